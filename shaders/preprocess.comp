@@ -1,0 +1,111 @@
+#version 460
+// Preprocess: one thread per Gaussian. Culls by the near plane, projects the 3D covariance to
+// 2D with the EWA Jacobian (clamped like the reference), adds the low-pass filter, inverts it to
+// the conic, bounds it by a 3-sigma radius and a tile rectangle, and evaluates the SH colour.
+// Mirrors preprocessCUDA of the reference rasterizer; constants come from constants.glsl.
+#extension GL_GOOGLE_include_directive : require
+
+#include "buffers.glsl"
+#include "constants.glsl"
+#include "frame.glsl"
+#include "sh.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(push_constant) uniform Push {
+    CameraBuffer camera;
+    Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
+    Floats sh;            // [Gaussian][coefficient][rgb]
+    Vec4s means_depth;    // out: pixel position (x, y), view depth
+    Vec4s conic_opacity;  // out: inverse 2D covariance (a, b, c) and opacity
+    Vec4s colors;         // out: rgb
+    UVec2s rects;         // out: tile rectangle, min and max packed as x | y << 16
+    Uints tiles_touched;  // out: tiles in the rectangle, 0 when culled
+    Uints visible;        // out: 1 if the splat is drawn, else 0 (input of the compaction scan)
+} pc;
+
+mat3 covariance_3d(vec3 scale, vec4 q) {
+    const float r = q.x, x = q.y, y = q.z, z = q.w;
+    // Rows of the rotation matrix of the (normalised) quaternion.
+    const mat3 rotation = transpose(mat3(
+        vec3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - r * z), 2.0 * (x * z + r * y)),
+        vec3(2.0 * (x * y + r * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - r * x)),
+        vec3(2.0 * (x * z - r * y), 2.0 * (y * z + r * x), 1.0 - 2.0 * (x * x + y * y))));
+    const mat3 m = rotation * mat3(scale.x, 0, 0, 0, scale.y, 0, 0, 0, scale.z);
+    return m * transpose(m);
+}
+
+void cull(uint i) {
+    pc.tiles_touched.v[i] = 0u;
+    pc.visible.v[i] = 0u;
+}
+
+void main() {
+    const CameraParams cam = pc.camera.c;
+    for (uint i = gl_GlobalInvocationID.x; i < cam.gaussian_count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        const vec4 position_opacity = pc.params.v[3u * i];
+        const vec3 p = position_opacity.xyz;
+        const vec3 view = vec3(dot(cam.view_row0.xyz, p) + cam.view_row0.w,
+                               dot(cam.view_row1.xyz, p) + cam.view_row1.w,
+                               dot(cam.view_row2.xyz, p) + cam.view_row2.w);
+        if (view.z <= NEAR_PLANE) {
+            cull(i);
+            continue;
+        }
+
+        const mat3 sigma = covariance_3d(pc.params.v[3u * i + 1u].xyz, pc.params.v[3u * i + 2u]);
+
+        // EWA: the Jacobian of the perspective projection at the (clamped) view position. Clamping
+        // the lateral position keeps splats far outside the view from growing without bound.
+        const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
+        const float tx = clamp(view.x / view.z, -cam.jacobian_limits.x, cam.jacobian_limits.y) * view.z;
+        const float ty = clamp(view.y / view.z, -cam.jacobian_limits.z, cam.jacobian_limits.w) * view.z;
+        const mat3 jacobian = transpose(mat3(vec3(fx / view.z, 0.0, -(fx * tx) / (view.z * view.z)),
+                                             vec3(0.0, fy / view.z, -(fy * ty) / (view.z * view.z)),
+                                             vec3(0.0)));
+        const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
+        const mat3 t = jacobian * world_to_view;
+        const mat3 cov = t * sigma * transpose(t);
+        const float a = cov[0][0] + LOW_PASS_FILTER;
+        const float b = cov[1][0];
+        const float c = cov[1][1] + LOW_PASS_FILTER;
+
+        const float det = a * c - b * b;
+        if (det == 0.0) {
+            cull(i);
+            continue;
+        }
+        const float det_inv = 1.0 / det;
+        const vec3 conic = vec3(c * det_inv, -b * det_inv, a * det_inv);
+        const float mid = 0.5 * (a + c);
+        const float lambda1 = mid + sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
+        const float lambda2 = mid - sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
+        const float radius = ceil(RADIUS_SIGMAS * sqrt(max(lambda1, lambda2)));
+
+        const vec2 mean = vec2(fx * view.x / view.z + cam.focal_principal.z,
+                               fy * view.y / view.z + cam.focal_principal.w);
+        // getRect: truncation toward zero, clamped to the grid. Clamping before the conversion
+        // keeps far-off splats from overflowing int.
+        const vec2 grid = vec2(cam.size.zw);
+        const vec2 tile = vec2(TILE_WIDTH, TILE_HEIGHT);
+        const uvec2 rect_min = uvec2(max(ivec2(clamp((mean - radius) / tile, vec2(-1.0), grid)), ivec2(0)));
+        const uvec2 rect_max =
+            uvec2(max(ivec2(clamp((mean + radius + tile - 1.0) / tile, vec2(-1.0), grid)), ivec2(0)));
+        const uint tiles = (rect_max.x - rect_min.x) * (rect_max.y - rect_min.y);
+        if (radius <= 0.0 || tiles == 0u) {
+            cull(i);
+            continue;
+        }
+
+        const vec3 direction = normalize(p - cam.position.xyz);
+        const vec3 color = max(eval_sh(pc.sh, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
+                               vec3(0.0));
+
+        pc.means_depth.v[i] = vec4(mean, view.z, 0.0);
+        pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
+        pc.colors.v[i] = vec4(color, 0.0);
+        pc.rects.v[i] = uvec2(rect_min.x | (rect_min.y << 16), rect_max.x | (rect_max.y << 16));
+        pc.tiles_touched.v[i] = tiles;
+        pc.visible.v[i] = 1u;
+    }
+}

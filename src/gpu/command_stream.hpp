@@ -1,0 +1,71 @@
+#pragma once
+// CommandStream: records compute work into one command buffer, submits it and waits.
+// It also owns a timestamp query pool, so every recorded stage can be timed on the GPU.
+#include <volk.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "gpu/buffer.hpp"
+#include "gpu/compute_pipeline.hpp"
+
+namespace vksplat::gpu {
+
+struct StageTime {
+    std::string label;
+    double milliseconds = 0;
+};
+
+class CommandStream {
+public:
+    explicit CommandStream(const Context& context, uint32_t max_timestamps = 64);
+    ~CommandStream();
+    CommandStream(const CommandStream&) = delete;
+    CommandStream& operator=(const CommandStream&) = delete;
+
+    void begin();
+    void dispatch(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes, uint32_t groups_x,
+                  uint32_t groups_y = 1);
+    template <class Push>
+    void dispatch(const ComputePipeline& pipeline, const Push& push, uint32_t groups_x, uint32_t groups_y = 1) {
+        dispatch(pipeline, &push, sizeof(Push), groups_x, groups_y);
+    }
+    // Group counts come from a VkDispatchIndirectCommand the GPU wrote at `offset` of `args`.
+    void dispatch_indirect(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes,
+                           const Buffer& args, VkDeviceSize offset);
+    template <class Push>
+    void dispatch_indirect(const ComputePipeline& pipeline, const Push& push, const Buffer& args, VkDeviceSize offset) {
+        dispatch_indirect(pipeline, &push, sizeof(Push), args, offset);
+    }
+    // Makes every earlier shader or transfer write visible to every later shader, indirect-argument
+    // or transfer access. Passes are ordered by this one coarse barrier: they are few and each
+    // touches most of its inputs, so finer barriers would buy nothing measurable.
+    void barrier();
+    void fill(const Buffer& buffer, uint32_t value, VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE);
+    // Writes up to 64 KiB of host data into a device buffer from inside the command buffer
+    // (vkCmdUpdateBuffer): per-frame parameters need no staging buffer this way.
+    void update(const Buffer& buffer, const void* data, VkDeviceSize bytes, VkDeviceSize offset = 0);
+    void copy(const Buffer& source, const Buffer& destination, VkDeviceSize bytes, VkDeviceSize source_offset = 0,
+              VkDeviceSize destination_offset = 0);
+    // Marks the end of a stage: the time from the previous mark (or begin()) is reported under label.
+    void mark(const std::string& label);
+    void submit_and_wait();
+    // Stage times of the last submission (empty if the queue has no timestamps).
+    std::vector<StageTime> stage_times() const;
+
+    VkCommandBuffer handle() const { return command_buffer_; }
+    const Context& context() const { return context_; }
+
+private:
+    const Context& context_;
+    VkCommandPool pool_ = VK_NULL_HANDLE;
+    VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;
+    VkFence fence_ = VK_NULL_HANDLE;
+    VkQueryPool queries_ = VK_NULL_HANDLE;
+    uint32_t max_timestamps_ = 0;
+    std::vector<std::string> labels_;
+    std::vector<StageTime> times_;
+};
+
+}  // namespace vksplat::gpu

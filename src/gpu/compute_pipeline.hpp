@@ -1,0 +1,36 @@
+#pragma once
+// ComputePipeline: one compute shader (embedded SPIR-V) with a push-constant block and
+// specialisation constants (ids 0..n-1, 32-bit each). RAII over the pipeline and its layout.
+#include <volk.h>
+
+#include <cstdint>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vksplat/gpu/context.hpp"
+
+namespace vksplat::gpu {
+
+class ComputePipeline {
+public:
+    ComputePipeline(const Context& context, std::span<const uint32_t> spirv, uint32_t push_constant_bytes,
+                    std::vector<uint32_t> specialization = {}, std::string name = "");
+    ~ComputePipeline();
+    ComputePipeline(const ComputePipeline&) = delete;
+    ComputePipeline& operator=(const ComputePipeline&) = delete;
+
+    VkPipeline handle() const { return pipeline_; }
+    VkPipelineLayout layout() const { return layout_; }
+    uint32_t push_constant_bytes() const { return push_constant_bytes_; }
+    const std::string& name() const { return name_; }
+
+private:
+    const Context& context_;
+    VkPipelineLayout layout_ = VK_NULL_HANDLE;
+    VkPipeline pipeline_ = VK_NULL_HANDLE;
+    uint32_t push_constant_bytes_ = 0;
+    std::string name_;
+};
+
+}  // namespace vksplat::gpu

@@ -1,0 +1,29 @@
+#pragma once
+// What the rest of the library sees of a Context: the device's function table and its limits.
+#include <volk.h>
+
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "vksplat/gpu/context.hpp"
+
+namespace vksplat::gpu {
+
+struct Context::Impl {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    VkQueue queue = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;
+    DeviceInfo info;
+    VkPhysicalDeviceMemoryProperties memory{};
+    VolkDeviceTable vk{};
+    mutable std::mutex messages_mutex;
+    std::vector<std::string> validation_messages;
+};
+
+inline const VolkDeviceTable& vk(const Context& context) { return context.impl().vk; }
+
+}  // namespace vksplat::gpu

@@ -1,0 +1,21 @@
+#pragma once
+// Turns a failed Vulkan call into a GpuError that says which call failed and why; an
+// out-of-memory result says so in words, since that is the one a user can act on.
+#include <volk.h>
+
+#include <string>
+
+#include "vksplat/error.hpp"
+
+namespace vksplat::gpu {
+
+const char* result_name(VkResult result);
+[[noreturn]] void throw_vk_error(VkResult result, const char* call);
+
+inline void check(VkResult result, const char* call) {
+    if (result != VK_SUCCESS) throw_vk_error(result, call);
+}
+
+}  // namespace vksplat::gpu
+
+#define VKSPLAT_VK(call) ::vksplat::gpu::check((call), #call)

@@ -1,0 +1,10 @@
+#include "render/passes.hpp"
+
+namespace vksplat::render {
+
+void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendPush& push,
+                  uint32_t tiles_x, uint32_t tiles_y) {
+    stream.dispatch(pipeline, push, tiles_x, tiles_y);
+}
+
+}  // namespace vksplat::render

@@ -1,0 +1,50 @@
+#include "render/frame_layout.hpp"
+
+#include <algorithm>
+
+#include "vksplat/constants.hpp"
+
+namespace vksplat::render {
+
+CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
+                                int scene_sh_degree, uint32_t entry_capacity) {
+    CameraParams p{};
+    float* rows[3] = {p.view_row0, p.view_row1, p.view_row2};
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) rows[r][c] = static_cast<float>(camera.rotation[c][r]);
+        rows[r][3] = static_cast<float>(camera.translation[r]);
+    }
+    const glm::dvec3 centre = camera.centre();
+    for (int i = 0; i < 3; ++i) p.position[i] = static_cast<float>(centre[i]);
+
+    // Pixel centres sit at integer coordinates in the reference (ndc2Pix), hence the -0.5.
+    p.focal_principal[0] = static_cast<float>(camera.fx);
+    p.focal_principal[1] = static_cast<float>(camera.fy);
+    p.focal_principal[2] = static_cast<float>(camera.cx - 0.5);
+    p.focal_principal[3] = static_cast<float>(camera.cy - 0.5);
+
+    // The reference clamps x/z to +-1.3 tan(fov_x / 2): the image edge plus 30% of the half
+    // width beyond it. With an off-centre principal point the edges sit at different angles on
+    // either side, so each side gets its own edge plus the same margin; centred, this is exactly
+    // the reference's limit.
+    const double margin_x = (constants::kJacobianClamp - 1.0) * camera.tan_half_fov_x();
+    const double margin_y = (constants::kJacobianClamp - 1.0) * camera.tan_half_fov_y();
+    p.jacobian_limits[0] = static_cast<float>(camera.cx / camera.fx + margin_x);
+    p.jacobian_limits[1] = static_cast<float>((camera.width - camera.cx) / camera.fx + margin_x);
+    p.jacobian_limits[2] = static_cast<float>(camera.cy / camera.fy + margin_y);
+    p.jacobian_limits[3] = static_cast<float>((camera.height - camera.cy) / camera.fy + margin_y);
+
+    p.size[0] = static_cast<uint32_t>(camera.width);
+    p.size[1] = static_cast<uint32_t>(camera.height);
+    p.size[2] = (p.size[0] + constants::kTileWidth - 1) / constants::kTileWidth;
+    p.size[3] = (p.size[1] + constants::kTileHeight - 1) / constants::kTileHeight;
+    for (int i = 0; i < 3; ++i) p.background[i] = settings.background[i];
+
+    p.gaussian_count = gaussian_count;
+    p.sh_degree = static_cast<uint32_t>(std::clamp(std::min(settings.max_sh_degree, scene_sh_degree), 0, 3));
+    p.sh_stride = static_cast<uint32_t>(sh_coefficients_for_degree(scene_sh_degree));
+    p.entry_capacity = entry_capacity;
+    return p;
+}
+
+}  // namespace vksplat::render

@@ -1,0 +1,41 @@
+#pragma once
+// C++ twin of shaders/include/frame.glsl: the per-frame camera block and the counter slots.
+#include <cstdint>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/render_types.hpp"
+#include "vksplat/scene.hpp"
+
+namespace vksplat::render {
+
+struct alignas(16) CameraParams {
+    float view_row0[4];
+    float view_row1[4];
+    float view_row2[4];
+    float position[4];
+    float focal_principal[4];
+    float jacobian_limits[4];
+    uint32_t size[4];
+    float background[4];
+    uint32_t gaussian_count;
+    uint32_t sh_degree;
+    uint32_t sh_stride;
+    uint32_t entry_capacity;
+};
+static_assert(sizeof(CameraParams) == 144, "must match CameraParams in frame.glsl (std430)");
+
+enum Counter : uint32_t {
+    kCounterGaussians = 0,
+    kCounterVisible = 1,
+    kCounterEntriesNeeded = 2,
+    kCounterEntries = 3,
+    kCounterVisibleArgs = 4,
+    kCounterEntryArgs = 7,
+    kCounterCount = 10,
+};
+
+
+CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
+                                int scene_sh_degree, uint32_t entry_capacity);
+
+}  // namespace vksplat::render

@@ -1,0 +1,44 @@
+#pragma once
+// FrameResources: the device buffers one frame works in, sized by the scene (per-Gaussian
+// arrays), the image (pixels and tiles) and the tile-entry capacity. Each group is reallocated
+// only when it must grow, so rendering many views of one scene allocates once.
+#include <cstdint>
+
+#include "gpu/buffer.hpp"
+#include "gpu/prefix_scan.hpp"
+#include "gpu/radix_sort.hpp"
+
+namespace vksplat::render {
+
+struct FrameResources {
+    const gpu::Context* context = nullptr;
+
+    // Per frame.
+    gpu::Buffer camera;    // CameraParams
+    gpu::Buffer counters;  // Counter slots (frame.glsl)
+
+    // Per Gaussian (capacity gaussian_capacity).
+    uint32_t gaussian_capacity = 0;
+    gpu::Buffer means_depth, conic_opacity, colors, rects, tiles_touched, visible, visible_offsets;
+    gpu::Buffer depth_keys, depth_values, sorted_tile_counts, entry_offsets;
+    std::unique_ptr<gpu::PrefixScan::Scratch> scan_scratch;
+
+    // Per tile entry (capacity entry_capacity).
+    uint32_t entry_capacity = 0;
+    gpu::Buffer tile_keys, tile_values;
+    std::unique_ptr<gpu::RadixSort::Scratch> sort_scratch;  // serves the depth and the tile sort
+
+    // Per pixel and per tile.
+    uint32_t pixel_capacity = 0, tile_capacity = 0;
+    gpu::Buffer color_alpha, depth, contributors, ranges;
+    gpu::Buffer readback;  // host-visible: color_alpha, depth, contributors, then the counters
+
+    explicit FrameResources(const gpu::Context& context);
+    void ensure_gaussians(uint32_t count);
+    void ensure_entries(uint32_t count);
+    void ensure_image(uint32_t pixels, uint32_t tiles);
+    uint64_t device_bytes() const;
+    static VkDeviceSize readback_bytes(uint32_t pixels);
+};
+
+}  // namespace vksplat::render

@@ -1,0 +1,37 @@
+#include "render/gpu_scene.hpp"
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "gpu/transfer.hpp"
+#include "vksplat/error.hpp"
+
+namespace vksplat::render {
+
+GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& cloud) {
+    cloud.check_consistent();
+    if (cloud.size() > std::numeric_limits<uint32_t>::max() / 64)
+        throw InputError("scene", "too many Gaussians for one GPU scene (" + std::to_string(cloud.size()) + ")");
+    const size_t n = cloud.size();
+    // Activations in float, as torch computes them before calling the reference rasterizer.
+    std::vector<float> params(n * 12);
+    for (size_t i = 0; i < n; ++i) {
+        float* out = &params[i * 12];
+        for (int k = 0; k < 3; ++k) out[k] = cloud.positions[3 * i + k];
+        out[3] = 1.0f / (1.0f + std::exp(-cloud.opacity_logits[i]));
+        for (int k = 0; k < 3; ++k) out[4 + k] = std::exp(cloud.log_scales[3 * i + k]);
+        out[7] = 0.0f;
+        const float* q = &cloud.rotations[4 * i];
+        const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        for (int k = 0; k < 4; ++k) out[8 + k] = q[k] / norm;
+    }
+    GpuScene scene;
+    scene.count = static_cast<uint32_t>(n);
+    scene.sh_degree = cloud.sh_degree;
+    scene.params = gpu::upload_buffer(context, params, "Gaussian parameters");
+    scene.sh = gpu::upload_buffer(context, cloud.sh, "spherical harmonics");
+    return scene;
+}
+
+}  // namespace vksplat::render

@@ -1,0 +1,59 @@
+#pragma once
+// The render passes. Each is one shader (shaders/<name>.comp) and one small host function that
+// fills its push constants (the C++ twin of the shader's Push block) and records the dispatch.
+#include <cstdint>
+
+#include "gpu/command_stream.hpp"
+
+namespace vksplat::render {
+
+using Address = VkDeviceAddress;
+
+struct PreprocessPush {
+    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, visible;
+};
+void record_preprocess(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const PreprocessPush& push,
+                       uint32_t gaussian_count);
+
+struct CompactVisiblePush {
+    Address camera, visible, offsets, means_depth, depth_keys, depth_values;
+};
+void record_compact_visible(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                            const CompactVisiblePush& push, uint32_t gaussian_count);
+
+struct IndirectArgsPush {
+    Address count_in, count_out, args;
+    uint32_t capacity, per_group;
+};
+void record_indirect_args(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                          const IndirectArgsPush& push);
+
+struct GatherTileCountsPush {
+    Address counters, depth_values, tiles_touched, sorted_tile_counts;
+};
+void record_gather_tile_counts(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                               const GatherTileCountsPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
+
+struct EmitTileEntriesPush {
+    Address camera, counters, depth_values, entry_offsets, rects, tile_keys, tile_values;
+};
+void record_emit_tile_entries(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                              const EmitTileEntriesPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
+
+struct TileRangesPush {
+    Address counters, tile_keys, ranges;
+};
+void record_tile_ranges(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const TileRangesPush& push,
+                        const gpu::Buffer& args, VkDeviceSize args_offset);
+
+struct BlendPush {
+    Address camera, ranges, tile_values, means_depth, conic_opacity, colors, out_color_alpha, out_depth,
+        out_contributors;
+};
+void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendPush& push,
+                  uint32_t tiles_x, uint32_t tiles_y);
+
+// Workgroups for a grid-stride loop over `count` elements, 256 per group, at most 65535 groups.
+uint32_t groups_for(uint32_t count, uint32_t per_group = 256);
+
+}  // namespace vksplat::render

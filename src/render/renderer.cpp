@@ -1,0 +1,235 @@
+#include "vksplat/render/renderer.hpp"
+
+#include <bit>
+#include <cmath>
+#include <cstring>
+
+#include "gpu/command_stream.hpp"
+#include "gpu/compute_pipeline.hpp"
+#include "gpu/prefix_scan.hpp"
+#include "gpu/radix_sort.hpp"
+#include "render/frame_layout.hpp"
+#include "render/frame_resources.hpp"
+#include "render/gpu_scene.hpp"
+#include "render/passes.hpp"
+#include "shaders/blend.spv.h"
+#include "shaders/compact_visible.spv.h"
+#include "shaders/emit_tile_entries.spv.h"
+#include "shaders/gather_tile_counts.spv.h"
+#include "shaders/indirect_args.spv.h"
+#include "shaders/preprocess.spv.h"
+#include "shaders/tile_ranges.spv.h"
+#include "vksplat/error.hpp"
+
+namespace vksplat {
+namespace {
+
+template <size_t N>
+std::span<const uint32_t> words(const uint32_t (&spirv)[N]) {
+    return {spirv, N};
+}
+
+// Tile-entry capacity to start with: a few tiles per Gaussian covers typical scenes; the
+// frame grows it when a view needs more.
+constexpr uint32_t kInitialEntriesPerGaussian = 4;
+constexpr double kEntryGrowth = 1.25;
+
+}  // namespace
+
+struct Renderer::Impl {
+    const gpu::Context& context;
+    gpu::ComputePipeline preprocess, compact_visible, indirect_args, gather_tile_counts, emit_tile_entries,
+        tile_ranges, blend;
+    gpu::PrefixScan scan;
+    gpu::RadixSort sort;
+    gpu::CommandStream stream;
+    render::GpuScene scene;
+    render::FrameResources frame;
+    FrameStats stats;
+
+    explicit Impl(const gpu::Context& c)
+        : context(c),
+          preprocess(c, words(preprocess_spv), sizeof(render::PreprocessPush), {}, "preprocess"),
+          compact_visible(c, words(compact_visible_spv), sizeof(render::CompactVisiblePush), {}, "compact_visible"),
+          indirect_args(c, words(indirect_args_spv), sizeof(render::IndirectArgsPush), {}, "indirect_args"),
+          gather_tile_counts(c, words(gather_tile_counts_spv), sizeof(render::GatherTileCountsPush), {},
+                             "gather_tile_counts"),
+          emit_tile_entries(c, words(emit_tile_entries_spv), sizeof(render::EmitTileEntriesPush), {},
+                            "emit_tile_entries"),
+          tile_ranges(c, words(tile_ranges_spv), sizeof(render::TileRangesPush), {}, "tile_ranges"),
+          blend(c, words(blend_spv), sizeof(render::BlendPush), {}, "blend"),
+          scan(c),
+          sort(c),
+          stream(c),
+          frame(c) {}
+
+    VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
+
+    void record_frame(const render::CameraParams& params, bool read_back);
+    void run(const Camera& camera, const RenderSettings& settings, bool read_back);
+};
+
+void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back) {
+    using namespace render;
+    const uint32_t n = scene.count;
+    const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
+    const uint32_t pixels = params.size[0] * params.size[1];
+    auto& f = frame;
+
+    stream.begin();
+    stream.update(f.camera, &params, sizeof(params));
+    uint32_t initial_counters[kCounterCount] = {};
+    initial_counters[kCounterGaussians] = n;
+    stream.update(f.counters, initial_counters, sizeof(initial_counters));
+    stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
+    stream.barrier();
+
+    record_preprocess(stream, preprocess,
+                      {f.camera.address(), scene.params.address(), scene.sh.address(), f.means_depth.address(),
+                       f.conic_opacity.address(), f.colors.address(), f.rects.address(), f.tiles_touched.address(),
+                       f.visible.address()},
+                      n);
+    stream.barrier();
+    stream.mark("preprocess");
+
+    scan.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterGaussians),
+                counter(kCounterVisible), *f.scan_scratch);
+    stream.barrier();
+    record_compact_visible(stream, compact_visible,
+                           {f.camera.address(), f.visible.address(), f.visible_offsets.address(),
+                            f.means_depth.address(), f.depth_keys.address(), f.depth_values.address()},
+                           n);
+    record_indirect_args(stream, indirect_args,
+                         {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
+                          f.gaussian_capacity, 256});
+    stream.barrier();
+    stream.mark("compact");
+
+    sort.record(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), 32, *f.sort_scratch);
+    stream.barrier();
+    stream.mark("depth sort");
+
+    record_gather_tile_counts(stream, gather_tile_counts,
+                              {f.counters.address(), f.depth_values.address(), f.tiles_touched.address(),
+                               f.sorted_tile_counts.address()},
+                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
+    stream.barrier();
+    scan.record(stream, f.sorted_tile_counts.address(), f.entry_offsets.address(), counter(kCounterVisible),
+                counter(kCounterEntriesNeeded), *f.scan_scratch);
+    stream.barrier();
+    record_indirect_args(stream, indirect_args,
+                         {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
+                          f.entry_capacity, 256});
+    record_emit_tile_entries(stream, emit_tile_entries,
+                             {f.camera.address(), f.counters.address(), f.depth_values.address(),
+                              f.entry_offsets.address(), f.rects.address(), f.tile_keys.address(),
+                              f.tile_values.address()},
+                             f.counters, kCounterVisibleArgs * sizeof(uint32_t));
+    stream.barrier();
+    stream.mark("tile entries");
+
+    // A stable sort on just the tile bits keeps each tile's entries in depth order.
+    const uint32_t tile_bits = std::max(1u, static_cast<uint32_t>(std::bit_width(tiles_x * tiles_y - 1)));
+    sort.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_bits, *f.sort_scratch);
+    stream.barrier();
+    stream.mark("tile sort");
+
+    record_tile_ranges(stream, tile_ranges, {f.counters.address(), f.tile_keys.address(), f.ranges.address()},
+                       f.counters, kCounterEntryArgs * sizeof(uint32_t));
+    stream.barrier();
+    stream.mark("ranges");
+
+    record_blend(stream, blend,
+                 {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.means_depth.address(),
+                  f.conic_opacity.address(), f.colors.address(), f.color_alpha.address(), f.depth.address(),
+                  f.contributors.address()},
+                 tiles_x, tiles_y);
+    stream.barrier();
+    stream.mark("blend");
+
+    const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
+    if (read_back) {
+        stream.copy(f.color_alpha, f.readback, uint64_t(pixels) * 16, 0, 0);
+        stream.copy(f.depth, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
+        stream.copy(f.contributors, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
+    }
+    stream.copy(f.counters, f.readback, kCounterCount * sizeof(uint32_t), 0, counters_offset);
+    stream.submit_and_wait();
+}
+
+void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
+    camera.validate();
+    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
+    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    frame.ensure_gaussians(scene.count);
+    frame.ensure_image(pixels, tiles);
+    if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
+
+    stats = {};
+    stats.gaussians = scene.count;
+    for (;;) {
+        const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
+                                                       frame.entry_capacity);
+        record_frame(params, read_back);
+        uint32_t counters[render::kCounterCount];
+        const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
+        std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
+        stats.visible = counters[render::kCounterVisible];
+        stats.tile_entries = counters[render::kCounterEntriesNeeded];
+        if (stats.tile_entries <= frame.entry_capacity) break;
+        // The view needs more tile entries than the buffers hold: grow with headroom and redo it.
+        const double grown = std::ceil(stats.tile_entries * kEntryGrowth);
+        if (grown > 0xffffffffu / 2)
+            throw GpuError("view needs " + std::to_string(stats.tile_entries) +
+                           " tile entries, more than one frame can sort");
+        frame.ensure_entries(static_cast<uint32_t>(grown));
+        ++stats.attempts;
+    }
+    const auto times = stream.stage_times();
+    for (const auto& t : times) {
+        stats.stages.push_back({t.label, t.milliseconds});
+        stats.gpu_milliseconds += t.milliseconds;
+    }
+    stats.device_bytes = frame.device_bytes() + scene.params.size() + scene.sh.size();
+}
+
+Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
+Renderer::~Renderer() = default;
+
+SanitizeReport Renderer::set_scene(const GaussianCloud& cloud) {
+    GaussianCloud copy = cloud;
+    SanitizeReport report = sanitize(copy);
+    impl_->scene = render::GpuScene::upload(impl_->context, copy);
+    return report;
+}
+
+size_t Renderer::scene_size() const { return impl_->scene.count; }
+
+RenderOutput Renderer::render(const Camera& camera, const RenderSettings& settings) {
+    impl_->run(camera, settings, true);
+    RenderOutput out;
+    out.width = camera.width;
+    out.height = camera.height;
+    const size_t pixels = size_t(camera.width) * camera.height;
+    const auto* base = static_cast<const char*>(impl_->frame.readback.mapped());
+    const auto* color_alpha = reinterpret_cast<const float*>(base);
+    out.rgb.resize(pixels * 3);
+    out.alpha.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        for (int c = 0; c < 3; ++c) out.rgb[i * 3 + c] = color_alpha[i * 4 + c];
+        out.alpha[i] = color_alpha[i * 4 + 3];
+    }
+    out.depth.resize(pixels);
+    std::memcpy(out.depth.data(), base + pixels * 16, pixels * 4);
+    out.contributors.resize(pixels);
+    std::memcpy(out.contributors.data(), base + pixels * 20, pixels * 4);
+    return out;
+}
+
+void Renderer::render_gpu_only(const Camera& camera, const RenderSettings& settings) {
+    impl_->run(camera, settings, false);
+}
+
+const FrameStats& Renderer::last_frame() const { return impl_->stats; }
+
+}  // namespace vksplat

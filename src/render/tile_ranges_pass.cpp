@@ -1,0 +1,10 @@
+#include "render/passes.hpp"
+
+namespace vksplat::render {
+
+void record_tile_ranges(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const TileRangesPush& push,
+                        const gpu::Buffer& args, VkDeviceSize args_offset) {
+    stream.dispatch_indirect(pipeline, push, args, args_offset);
+}
+
+}  // namespace vksplat::render

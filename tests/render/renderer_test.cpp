@@ -1,0 +1,88 @@
+// Renderer behaviour beyond the picture: determinism, growth of the tile-entry buffers, bad
+// cameras, statistics.
+#include <gtest/gtest.h>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::test {
+namespace {
+
+class RendererTest : public GpuTest {};
+
+TEST_F(RendererTest, SameFrameTwiceIsBitIdentical) {
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(21, 2000, 3));
+    const Camera camera = forward_camera(200, 150, 150.0);
+    const RenderOutput a = renderer.render(camera);
+    const RenderOutput b = renderer.render(camera);
+    EXPECT_EQ(a.rgb, b.rgb);
+    EXPECT_EQ(a.alpha, b.alpha);
+    EXPECT_EQ(a.depth, b.depth);
+    EXPECT_EQ(a.contributors, b.contributors);
+}
+
+TEST_F(RendererTest, GrowsTileEntriesWhenAViewNeedsMore) {
+    // Large splats touch many tiles each: far more than the initial entries-per-Gaussian guess.
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(22, 50, 0, 2.0f, 3.0f, 0.5f, 1.0f));
+    const Camera camera = forward_camera(512, 512, 400.0);
+    const RenderOutput grown = renderer.render(camera);
+    EXPECT_GT(renderer.last_frame().attempts, 1u);
+    EXPECT_GT(renderer.last_frame().tile_entries, 50u * 4u);
+    const RenderOutput again = renderer.render(camera);
+    EXPECT_EQ(renderer.last_frame().attempts, 1u) << "capacity should persist between frames";
+    EXPECT_EQ(grown.rgb, again.rgb);
+}
+
+TEST_F(RendererTest, ReportsStagesAndCounts) {
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(23, 1000, 1));
+    renderer.render(forward_camera(128, 128, 100.0));
+    const FrameStats& stats = renderer.last_frame();
+    EXPECT_EQ(stats.gaussians, 1000u);
+    EXPECT_GT(stats.visible, 0u);
+    EXPECT_LE(stats.visible, 1000u);
+    EXPECT_GE(stats.tile_entries, stats.visible);
+    EXPECT_GT(stats.device_bytes, 0u);
+    if (context().info().timestamp_period_ns > 0) {
+        ASSERT_FALSE(stats.stages.empty());
+        EXPECT_EQ(stats.stages.back().stage, "blend");
+        EXPECT_GT(stats.gpu_milliseconds, 0.0);
+    }
+}
+
+TEST_F(RendererTest, RejectsInvalidCameras) {
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(24, 10, 0));
+    Camera camera = forward_camera(64, 64, 0.0);
+    camera.name = "zero focal";
+    try {
+        renderer.render(camera);
+        FAIL() << "a camera with zero focal length rendered";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("zero focal"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(RendererTest, NonFiniteInputNeverGivesANanPixel) {
+    GaussianCloud cloud = random_scene(25, 200, 2);
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    cloud.positions[0] = nan;
+    cloud.rotations[4 * 1 + 0] = cloud.rotations[4 * 1 + 1] = cloud.rotations[4 * 1 + 2] = cloud.rotations[4 * 1 + 3] = 0;
+    cloud.log_scales[3 * 2] = inf;
+    cloud.opacity_logits[3] = nan;
+    cloud.sh[4 * 48 + 5] = inf;
+    cloud.log_scales[3 * 5 + 1] = 80.0f;  // absurdly large: clamped
+    Renderer renderer(context());
+    const SanitizeReport report = renderer.set_scene(cloud);
+    EXPECT_EQ(report.dropped(), 3u);
+    const RenderOutput out = renderer.render(forward_camera(100, 80, 80.0));
+    for (float v : out.rgb) ASSERT_TRUE(std::isfinite(v));
+    for (float v : out.depth) ASSERT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
+}  // namespace vksplat::test

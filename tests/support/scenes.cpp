@@ -1,0 +1,57 @@
+#include "support/scenes.hpp"
+
+#include <cmath>
+#include <random>
+
+namespace vksplat::test {
+
+Camera forward_camera(int width, int height, double focal) {
+    Camera camera;
+    camera.name = "forward";
+    camera.width = width;
+    camera.height = height;
+    camera.fx = camera.fy = focal;
+    camera.cx = width / 2.0;
+    camera.cy = height / 2.0;
+    return camera;
+}
+
+void add_gaussian(GaussianCloud& cloud, const float position[3], const float scale[3], const float quaternion[4],
+                  float opacity, const float rgb[3]) {
+    constexpr float kShC0 = 0.28209479177387814f;
+    const size_t i = cloud.size();
+    cloud.resize(i + 1);
+    for (int k = 0; k < 3; ++k) {
+        cloud.positions[3 * i + k] = position[k];
+        cloud.log_scales[3 * i + k] = std::log(scale[k]);
+        cloud.sh[i * size_t(cloud.sh_coefficients()) * 3 + k] = (rgb[k] - 0.5f) / kShC0;
+    }
+    for (int k = 0; k < 4; ++k) cloud.rotations[4 * i + k] = quaternion[k];
+    cloud.opacity_logits[i] = std::log(opacity / (1.0f - opacity));
+}
+
+GaussianCloud random_scene(uint32_t seed, size_t n, int sh_degree, float z_near, float z_far, float scale_min,
+                           float scale_max, float half_width) {
+    std::mt19937 rng(seed);
+    auto uniform = [&](float lo, float hi) { return lo + (hi - lo) * float(rng() >> 8) * (1.0f / 16777216.0f); };
+    GaussianCloud cloud;
+    cloud.sh_degree = sh_degree;
+    cloud.resize(n);
+    const int coeffs = cloud.sh_coefficients();
+    for (size_t i = 0; i < n; ++i) {
+        const float z = uniform(z_near, z_far);
+        cloud.positions[3 * i + 0] = uniform(-half_width, half_width) * z / 4.0f;
+        cloud.positions[3 * i + 1] = uniform(-half_width, half_width) * z / 4.0f;
+        cloud.positions[3 * i + 2] = z;
+        for (int k = 0; k < 3; ++k)
+            cloud.log_scales[3 * i + k] = std::log(scale_min) + uniform(0, 1) * std::log(scale_max / scale_min);
+        for (int k = 0; k < 4; ++k) cloud.rotations[4 * i + k] = uniform(-1, 1);
+        cloud.rotations[4 * i] += 0.1f;  // keeps the norm away from zero
+        cloud.opacity_logits[i] = uniform(-3, 4);
+        for (int c = 0; c < coeffs * 3; ++c)
+            cloud.sh[i * size_t(coeffs) * 3 + size_t(c)] = c < 3 ? uniform(-1.5f, 1.5f) : uniform(-0.4f, 0.4f);
+    }
+    return cloud;
+}
+
+}  // namespace vksplat::test
