@@ -27,13 +27,14 @@ struct Camera {
 
     // A camera at `eye` looking at `target` with `up` pointing up in the picture (OpenCV axes:
     // x = normalise(forward x up), y = forward x x). Principal point at the centre.
+    // Throws InputError when eye and target coincide or up is parallel to the view direction.
     static Camera look_at(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up,
                           int width, int height, double fx, double fy);
 
     // The same camera for another image size: focal lengths and principal point scale with it.
     Camera resized(int new_width, int new_height) const;
 
-    // Throws std::invalid_argument naming the camera and the problem: non-positive size,
+    // Throws InputError naming the camera and the problem: non-positive size,
     // zero/negative/non-finite focal length, non-finite or non-orthonormal rotation.
     void validate() const;
 };
