@@ -46,13 +46,13 @@ struct GaussianCloud {
 // overflow are clamped; non-finite SH or opacity is replaced. See sanitize() for the rules.
 struct SanitizeReport {
     size_t input_count = 0;
-    size_t dropped_nonfinite_position = 0;
+    size_t dropped_nonfinite_position = 0;  // non-finite or beyond kMaxCoordinate
     size_t dropped_nonfinite_rotation = 0;
     size_t dropped_zero_rotation = 0;
     size_t dropped_nonfinite_scale = 0;
     size_t clamped_scale = 0;             // log-scale outside [kMinLogScale, kMaxLogScale]
     size_t replaced_nonfinite_opacity = 0;  // NaN -> fully transparent; +-inf clamped
-    size_t replaced_nonfinite_sh = 0;       // Gaussians with any non-finite SH value (set to 0)
+    size_t replaced_nonfinite_sh = 0;       // Gaussians with SH non-finite (set to 0) or huge (clamped)
 
     size_t dropped() const {
         return dropped_nonfinite_position + dropped_nonfinite_rotation + dropped_zero_rotation +
@@ -66,6 +66,10 @@ struct SanitizeReport {
 // Log-scale bounds: 1e-10 .. 1e6 scene units. Outside them float covariances under/overflow.
 inline constexpr float kMinLogScale = -23.0f;
 inline constexpr float kMaxLogScale = 13.8f;
+// Coordinates beyond this are treated like non-finite ones (float math overflows on them).
+inline constexpr float kMaxCoordinate = 1e15f;
+// SH coefficients are clamped to this magnitude (trained scenes stay far below 10).
+inline constexpr float kMaxShMagnitude = 1e4f;
 // Opacity logits are clamped to this magnitude so that sigmoid stays finite and exact.
 inline constexpr float kMaxOpacityLogit = 30.0f;
 

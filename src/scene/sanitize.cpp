@@ -19,11 +19,17 @@ bool all_finite(const float* values, size_t n) {
     return std::all_of(values, values + n, [](float v) { return std::isfinite(v); });
 }
 
+// A coordinate this far out is as undefined as infinity for float math: the view transform of
+// 1e20 overflows to inf once squared, and inf/inf is NaN.
+bool position_usable(const float* p) {
+    return std::all_of(p, p + 3, [](float v) { return std::isfinite(v) && std::abs(v) <= kMaxCoordinate; });
+}
+
 enum class DropCause { none, position, rotation, zero_rotation, scale };
 
 // The first reason Gaussian i's geometry is undefined, in the order the report lists them.
 DropCause drop_cause(const GaussianCloud& cloud, size_t i) {
-    if (!all_finite(&cloud.positions[i * 3], 3)) return DropCause::position;
+    if (!position_usable(&cloud.positions[i * 3])) return DropCause::position;
     const float* q = &cloud.rotations[i * 4];
     if (!all_finite(q, 4)) return DropCause::rotation;
     // In double: float squares of tiny or huge components would under/overflow.
@@ -54,13 +60,15 @@ bool fix_opacity(float& logit) {
     return changed;
 }
 
-bool zero_nonfinite(float* values, size_t n) {
+// Non-finite SH becomes 0 (no view-dependent colour); huge values are clamped so that the sum
+// of 16 terms cannot overflow.
+bool fix_sh(float* values, size_t n) {
     bool changed = false;
-    for (size_t k = 0; k < n; ++k)
-        if (!std::isfinite(values[k])) {
-            values[k] = 0.0f;
-            changed = true;
-        }
+    for (size_t k = 0; k < n; ++k) {
+        const float fixed = std::isfinite(values[k]) ? std::clamp(values[k], -kMaxShMagnitude, kMaxShMagnitude) : 0.0f;
+        changed |= fixed != values[k] || !std::isfinite(values[k]);
+        values[k] = fixed;
+    }
     return changed;
 }
 
@@ -101,7 +109,7 @@ SanitizeReport sanitize(GaussianCloud& cloud) {
         }
         report.clamped_scale += clamp_scales(&cloud.log_scales[i * 3]) ? 1 : 0;
         report.replaced_nonfinite_opacity += fix_opacity(cloud.opacity_logits[i]) ? 1 : 0;
-        report.replaced_nonfinite_sh += zero_nonfinite(&cloud.sh[i * sh_per], sh_per) ? 1 : 0;
+        report.replaced_nonfinite_sh += fix_sh(&cloud.sh[i * sh_per], sh_per) ? 1 : 0;
         move_gaussian(cloud, i, kept, sh_per);
         ++kept;
     }
@@ -117,7 +125,7 @@ std::string SanitizeReport::summary() const {
         if (!out.empty()) out += "\n";
         out += std::to_string(count) + " " + what;
     };
-    line(dropped_nonfinite_position, "Gaussians dropped: non-finite position");
+    line(dropped_nonfinite_position, "Gaussians dropped: non-finite position or a coordinate beyond +-" + number(kMaxCoordinate));
     line(dropped_nonfinite_rotation, "Gaussians dropped: non-finite rotation");
     line(dropped_zero_rotation, "Gaussians dropped: zero-length rotation quaternion");
     line(dropped_nonfinite_scale, "Gaussians dropped: non-finite scale");
@@ -125,7 +133,7 @@ std::string SanitizeReport::summary() const {
                             number(kMaxLogScale) + "]");
     line(replaced_nonfinite_opacity, "Gaussians with opacity logit NaN (made transparent) or beyond +-" +
                                          number(kMaxOpacityLogit) + " (clamped)");
-    line(replaced_nonfinite_sh, "Gaussians with non-finite SH coefficients (set to 0)");
+    line(replaced_nonfinite_sh, "Gaussians with non-finite SH coefficients (set to 0) or beyond +-" + number(kMaxShMagnitude) + " (clamped)");
     return out;
 }
 

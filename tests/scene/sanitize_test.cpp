@@ -57,6 +57,24 @@ TEST(Sanitize, DropsNonFinitePositions) {
     EXPECT_NO_THROW(cloud.check_consistent());
 }
 
+TEST(Sanitize, DropsPositionsBeyondTheFloatSafeRange) {
+    GaussianCloud cloud = clean_cloud(3);
+    cloud.positions[0 * 3 + 1] = 1e6f;   // far, but fine
+    cloud.positions[1 * 3 + 2] = -1e20f; // would overflow once squared in the projection
+    const SanitizeReport report = sanitize(cloud);
+    EXPECT_EQ(report.dropped_nonfinite_position, 1u);
+    EXPECT_EQ(x_positions(cloud), (std::vector<float>{0.0f, 2.0f}));
+}
+
+TEST(Sanitize, ClampsHugeShCoefficients) {
+    GaussianCloud cloud = clean_cloud(2);
+    cloud.sh[1 * 12 + 4] = 3e30f;
+    const SanitizeReport report = sanitize(cloud);
+    EXPECT_EQ(report.replaced_nonfinite_sh, 1u);
+    EXPECT_EQ(cloud.sh[1 * 12 + 4], kMaxShMagnitude);
+    EXPECT_EQ(cloud.sh[0], 0.25f);
+}
+
 TEST(Sanitize, DropsNonFiniteRotations) {
     GaussianCloud cloud = clean_cloud(3);
     cloud.rotations[0 * 4 + 3] = kInf;
@@ -159,9 +177,9 @@ TEST(Sanitize, SummaryHasOneLinePerCause) {
     cloud.sh[2 * 12] = kNaN;
     const std::string summary = sanitize(cloud).summary();
     EXPECT_EQ(summary,
-              "1 Gaussians dropped: non-finite position\n"
+              "1 Gaussians dropped: non-finite position or a coordinate beyond +-1e+15\n"
               "1 Gaussians with log-scales clamped to [-23, 13.8]\n"
-              "1 Gaussians with non-finite SH coefficients (set to 0)");
+              "1 Gaussians with non-finite SH coefficients (set to 0) or beyond +-10000 (clamped)");
 }
 
 TEST(Sanitize, RejectsAnInconsistentCloud) {
