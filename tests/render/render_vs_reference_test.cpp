@@ -41,8 +41,9 @@ protected:
         size_t same_contributors = 0;
         for (size_t i = 0; i < gpu.depth.size(); ++i) {
             for (int c = 0; c < 3; ++c) ASSERT_FALSE(std::isnan(gpu.rgb[i * 3 + c])) << "NaN at pixel " << i;
-            if (ref.alpha[i] > 0.05f)
+            if (ref.alpha[i] > 0.05f) {
                 EXPECT_NEAR(gpu.depth[i], ref.depth[i], 0.02 * std::abs(ref.depth[i]) + 1e-4) << "depth at " << i;
+            }
             same_contributors += gpu.contributors[i] == ref.contributors[i];
         }
         EXPECT_GE(double(same_contributors), 0.99 * double(gpu.depth.size()));
