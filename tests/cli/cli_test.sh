@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# End-to-end checks of the vksplat CLI: the demo, info, render with metrics, and the message each
+# bad input gets. usage: cli_test.sh VKSPLAT_BINARY WORK_DIR
+set -u
+vksplat=$1
+work=$2
+rm -rf "$work" && mkdir -p "$work"
+passed=0
+failed=0
+
+# expect NAME EXPECTED_EXIT PATTERN -- COMMAND...: the command exits as expected and its output
+# (stdout and stderr) contains PATTERN.
+expect() {
+  local name=$1 want_exit=$2 pattern=$3
+  shift 4
+  local output status
+  output=$("$@" 2>&1)
+  status=$?
+  if { [ "$want_exit" = any-failure ] && [ $status -ne 0 ] || [ "$status" = "$want_exit" ]; } &&
+     grep -qF -- "$pattern" <<<"$output"; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1))
+    echo "FAILED: $name (exit $status, wanted $want_exit and '$pattern')"
+    echo "$output" | sed 's/^/    /' | tail -n 15
+  fi
+}
+
+expect demo 0 "wrote 2 views and demo.ply" -- "$vksplat" demo --out "$work/demo" --views 2 --width 96 --height 64
+expect demo-refuses-overwrite any-failure "exists" -- "$vksplat" demo --out "$work/demo" --views 2 --width 96 --height 64
+expect info 0 "Gaussians: 38605" -- "$vksplat" info "$work/demo/demo.ply"
+expect devices 0 "subgroup" -- "$vksplat" devices
+expect help-has-example 0 "Example:" -- "$vksplat" render --help
+
+# One INRIA camera above the demo scene looking down.
+cat >"$work/cameras.json" <<'JSON'
+[{"id": 0, "img_name": "top", "width": 80, "height": 60, "position": [0, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 70, "fy": 70}]
+JSON
+expect render 0 "wrote 1 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --out "$work/render" --depth --alpha --background 1,1,1
+[ -f "$work/render/top.png" ] && [ -f "$work/render/top.alpha.png" ] && [ -f "$work/render/top.depth.npy" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: render outputs missing"; }
+mkdir -p "$work/photos" && cp "$work/render/top.png" "$work/photos/top.png"
+expect render-metrics 0 "mean PSNR" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --out "$work/scored" --images "$work/photos" --background 1,1,1
+
+# Bad input, each with the message that names it.
+head -c 5000 "$work/demo/demo.ply" >"$work/truncated.ply"
+expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"
+expect truncated-ply-says-so 2 "truncated" -- "$vksplat" info "$work/truncated.ply"
+sed 's/property float opacity/property float opacity\nproperty float extra_a\nproperty float extra_b/' \
+  "$work/demo/demo.ply" >"$work/wrong_count.ply" 2>/dev/null
+expect wrong-property-count 2 "wrong_count.ply" -- "$vksplat" info "$work/wrong_count.ply"
+expect missing-camera-file any-failure "does not exist" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/nope.json" --out "$work/x"
+sed 's/"fx": 70/"fx": 0/' "$work/cameras.json" >"$work/zero_focal.json"
+expect zero-focal 2 "zero_focal.json" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
+expect zero-focal-says-so 2 "focal" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
+sed 's/"width": 80/"width": 81/' "$work/cameras.json" >"$work/wider.json"
+expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/wider.json" --out "$work/z" --images "$work/photos"
+expect bad-view-list 2 "view 4 does not exist" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --out "$work/w" --views 0,4
+
+echo "cli: $passed passed, $failed failed"
+[ $failed -eq 0 ]
