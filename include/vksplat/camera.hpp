@@ -37,6 +37,8 @@ struct Camera {
     // Throws InputError naming the camera and the problem: non-positive size,
     // zero/negative/non-finite focal length, non-finite or non-orthonormal rotation.
     void validate() const;
+    // What validate() would complain about, without the camera's name; empty when valid.
+    std::string problem() const;
 };
 
 }  // namespace vksplat

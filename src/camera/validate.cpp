@@ -29,20 +29,23 @@ double orthonormality_error(const glm::dmat3& r) {
 
 }  // namespace
 
-void Camera::validate() const {
-    const std::string where = "camera '" + name + "'";
-    const auto fail = [&where](const std::string& problem) { throw InputError(where, problem); };
+std::string Camera::problem() const {
     if (width <= 0 || height <= 0)
-        fail("image size " + std::to_string(width) + "x" + std::to_string(height) + " is not positive");
+        return "image size " + std::to_string(width) + "x" + std::to_string(height) + " is not positive";
     if (!std::isfinite(fx) || !std::isfinite(fy) || fx <= 0.0 || fy <= 0.0)
-        fail("focal length (" + std::to_string(fx) + ", " + std::to_string(fy) + ") must be positive and finite");
+        return "focal length (" + std::to_string(fx) + ", " + std::to_string(fy) + ") must be positive and finite";
     if (!std::isfinite(cx) || !std::isfinite(cy))
-        fail("principal point (" + std::to_string(cx) + ", " + std::to_string(cy) + ") is not finite");
-    if (!finite(translation)) fail("translation is not finite");
-    if (!finite(rotation)) fail("rotation is not finite");
+        return "principal point (" + std::to_string(cx) + ", " + std::to_string(cy) + ") is not finite";
+    if (!finite(translation)) return "translation is not finite";
+    if (!finite(rotation)) return "rotation is not finite";
     if (const double error = orthonormality_error(rotation); error > kOrthonormalTolerance)
-        fail("rotation is not orthonormal (R^T R differs from the identity by " + std::to_string(error) + ")");
-    if (glm::determinant(rotation) < 0.0) fail("rotation is a reflection (determinant < 0)");
+        return "rotation is not orthonormal (R^T R differs from the identity by " + std::to_string(error) + ")";
+    if (glm::determinant(rotation) < 0.0) return "rotation is a reflection (determinant < 0)";
+    return {};
+}
+
+void Camera::validate() const {
+    if (const std::string what = problem(); !what.empty()) throw InputError("camera '" + name + "'", what);
 }
 
 }  // namespace vksplat

@@ -81,11 +81,7 @@ std::vector<double> matrix_field(const json& object, const char* key, size_t row
 }
 
 void check_camera(const Camera& camera, const std::string& at) {
-    try {
-        camera.validate();
-    } catch (const std::exception& error) {  // documented as invalid_argument, may be InputError
-        throw InputError(at, error.what());
-    }
+    if (const std::string problem = camera.problem(); !problem.empty()) throw InputError(at, problem);
 }
 
 }  // namespace vksplat::io::detail

@@ -46,9 +46,9 @@ expect render-metrics 0 "mean PSNR" -- "$vksplat" render "$work/demo/demo.ply" -
   --out "$work/scored" --images "$work/photos" --background 1,1,1
 
 # Bad input, each with the message that names it.
-head -c 5000 "$work/demo/demo.ply" >"$work/truncated.ply"
+head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"
-expect truncated-ply-says-so 2 "truncated" -- "$vksplat" info "$work/truncated.ply"
+expect truncated-ply-says-so 2 "truncated body: 38605 vertices expected" -- "$vksplat" info "$work/truncated.ply"
 sed 's/property float opacity/property float opacity\nproperty float extra_a\nproperty float extra_b/' \
   "$work/demo/demo.ply" >"$work/wrong_count.ply" 2>/dev/null
 expect wrong-property-count 2 "wrong_count.ply" -- "$vksplat" info "$work/wrong_count.ply"
@@ -56,7 +56,7 @@ expect missing-camera-file any-failure "does not exist" -- "$vksplat" render "$w
   --cameras "$work/nope.json" --out "$work/x"
 sed 's/"fx": 70/"fx": 0/' "$work/cameras.json" >"$work/zero_focal.json"
 expect zero-focal 2 "zero_focal.json" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
-expect zero-focal-says-so 2 "focal" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
+expect zero-focal-says-so 2 "camera 0 ('top'): focal length (0.000000, 70.000000) must be positive" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
 sed 's/"width": 80/"width": 81/' "$work/cameras.json" >"$work/wider.json"
 expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$vksplat" render "$work/demo/demo.ply" \
   --cameras "$work/wider.json" --out "$work/z" --images "$work/photos"
