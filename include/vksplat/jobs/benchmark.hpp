@@ -1,0 +1,49 @@
+#pragma once
+// Timing of the renderer: each view is rendered repeatedly after a warm-up and the GPU's own
+// timestamps give the median and minimum per frame and per stage. What `vksplat bench` does.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::jobs {
+
+struct BenchmarkOptions {
+    int warmup = 5;
+    int repetitions = 50;
+    RenderSettings settings;
+};
+
+struct StageSummary {
+    std::string stage;
+    double median_ms = 0, min_ms = 0;
+};
+
+struct ViewBenchmark {
+    size_t view = 0;
+    int width = 0, height = 0;
+    double median_ms = 0, min_ms = 0;   // whole frame, GPU time first to last dispatch
+    std::vector<StageSummary> stages;
+    uint32_t visible = 0, tile_entries = 0;
+    uint64_t device_bytes = 0;
+};
+
+struct BenchmarkResult {
+    std::vector<ViewBenchmark> views;
+    double mean_of_medians_ms = 0;      // the per-view medians averaged over the views
+    std::string device;
+};
+
+BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& cameras,
+                                const std::vector<size_t>& views, const BenchmarkOptions& options,
+                                const std::string& device_name);
+
+double median(std::vector<double> values);
+
+// The camera at another resolution with the same focal length per unit of width (the benchmark
+// convention: lego at 1920x1080 multiplies fx and fy by 1920 / 800), principal point centred.
+Camera with_resolution(const Camera& camera, int width, int height);
+
+}  // namespace vksplat::jobs
