@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Sets vksplat up on a fresh Debian 12 machine: installs the Debian packages it needs, builds it,
+# then either renders the built-in demo scene (`demo`) or runs the test suite (`test`).
+# README.md explains why each package is here. Runs apt through sudo when not root.
+set -euo pipefail
+mode=${1:-demo}
+root=$(cd "$(dirname "$0")/.." && pwd)
+build=${VKSPLAT_BUILD_DIR:-$root/build}
+
+packages=(
+  cmake g++ pkg-config
+  libvulkan-dev mesa-vulkan-drivers glslang-tools libvulkan-volk-dev
+  libglm-dev libeigen3-dev libopencv-dev libnanoflann-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev
+)
+sudo_cmd=()
+[ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
+missing=()
+for p in "${packages[@]}"; do dpkg -s "$p" >/dev/null 2>&1 || missing+=("$p"); done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  "${sudo_cmd[@]}" apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+cmake --build "$build" -j"$(nproc)"
+
+case "$mode" in
+  demo) "$build/tools/vksplat" demo --out "${2:-$root/demo_out}" --force ;;
+  test) ctest --test-dir "$build" --output-on-failure -j"$(nproc)" ;;
+  *) echo "usage: $0 demo [OUT_DIR] | test" >&2; exit 2 ;;
+esac
