@@ -1,9 +1,10 @@
 // The GPU renderer against the double-precision reference rasterizer on generated scenes that
 // cover the edge cases. Tolerances, held at every pixel:
-//   rgb, alpha:   |GPU - reference| <= 0.02 everywhere, and PSNR >= 55 dB over the image.
-//                 (float vs double can flip a borderline decision — alpha at exactly 1/255, a
-//                 3-sigma rectangle touching a tile, the 1e-4 transmittance stop — which moves
-//                 one splat's share of one pixel; everything else agrees to ~1e-5.)
+//   rgb, alpha:   |GPU - reference| <= 0.01 everywhere, and PSNR >= 90 dB over the image.
+//                 Float against double agrees to ~1e-5 (PSNR 130+ dB), except where it flips a
+//                 borderline decision — alpha at exactly 1/255, a 3-sigma rectangle touching a
+//                 tile, the 1e-4 transmittance stop — which moves one splat's share of one pixel
+//                 (the worst seen: 0.0015, on the 333x777 scene).
 //   depth:        |GPU - reference| <= 0.02 * depth where alpha > 0.05.
 //   contributors: equal on >= 99% of pixels.
 #include <gtest/gtest.h>
@@ -19,8 +20,8 @@
 namespace vksplat::test {
 namespace {
 
-constexpr double kMaxColorError = 0.02;
-constexpr double kMinPsnr = 55.0;
+constexpr double kMaxColorError = 0.01;
+constexpr double kMinPsnr = 90.0;
 
 class RenderVsReference : public GpuTest {
 protected:
