@@ -16,7 +16,7 @@ layout(push_constant) uniform Push {
     CameraBuffer camera;
     Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
     Floats sh;            // [Gaussian][coefficient][rgb]
-    Vec4s means_depth;    // out: pixel position (x, y), view depth
+    Vec4s means_depth;    // out: pixel position (x, y), view depth, radius in pixels
     Vec4s conic_opacity;  // out: inverse 2D covariance (a, b, c) and opacity
     Vec4s colors;         // out: rgb
     UVec2s rects;         // out: tile rectangle, min and max packed as x | y << 16
@@ -101,7 +101,7 @@ void main() {
         const vec3 color = max(eval_sh(pc.sh, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
                                vec3(0.0));
 
-        pc.means_depth.v[i] = vec4(mean, view.z, 0.0);
+        pc.means_depth.v[i] = vec4(mean, view.z, radius);
         pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
         pc.colors.v[i] = vec4(color, 0.0);
         pc.rects.v[i] = uvec2(rect_min.x | (rect_min.y << 16), rect_max.x | (rect_max.y << 16));

@@ -9,6 +9,33 @@ namespace vksplat {
 struct RenderSettings {
     std::array<float, 3> background{0.f, 0.f, 0.f};
     int max_sh_degree = 3;   // SH bands above this are ignored (capped by the scene's degree)
+    // Also measure, per Gaussian, what it contributed to this view (RenderOutput::stats). Costs
+    // atomics in the blend pass, so plain rendering leaves it off and pays nothing for it.
+    bool gather_stats = false;
+};
+
+// What each Gaussian did in one view, indexed like the cloud given to the renderer (Gaussians
+// that sanitising dropped stay zero). Filled only when RenderSettings::gather_stats is set.
+struct GaussianStats {
+    std::vector<uint8_t> visible;     // survived culling (near plane, empty tile rectangle)
+    std::vector<float> screen_x;      // projected centre in pixels (pixel centres at integers)
+    std::vector<float> screen_y;
+    std::vector<float> depth;         // view-space depth
+    std::vector<float> radius;        // projected radius in pixels, ceil(3 sigma); 0 if not visible
+    std::vector<double> blend_weight; // sum over pixels of alpha * T it contributed
+    std::vector<float> max_weight;    // max over pixels of alpha * T
+    // Pixels where its alpha reached 1/255: it contributed there, or it stopped the pixel at the
+    // transmittance floor. A Gaussian with 0 here in every view can go without changing any of
+    // those views' pixels.
+    std::vector<uint32_t> pixels;
+
+    void resize(size_t n) {
+        visible.assign(n, 0);
+        for (auto* v : {&screen_x, &screen_y, &depth, &radius, &max_weight}) v->assign(n, 0.0f);
+        blend_weight.assign(n, 0.0);
+        pixels.assign(n, 0);
+    }
+    size_t size() const { return visible.size(); }
 };
 
 // Images are row-major, top row first. rgb has 3 floats per pixel, unclamped above
@@ -24,6 +51,7 @@ struct RenderOutput {
     // The reference's n_contrib: how many depth-ordered splats of the pixel's tile were walked up
     // to and including the last one that contributed.
     std::vector<uint32_t> contributors;
+    GaussianStats stats;
 };
 
 }  // namespace vksplat

@@ -53,6 +53,8 @@ struct SanitizeReport {
     size_t clamped_scale = 0;             // log-scale outside [kMinLogScale, kMaxLogScale]
     size_t replaced_nonfinite_opacity = 0;  // NaN -> fully transparent; +-inf clamped
     size_t replaced_nonfinite_sh = 0;       // Gaussians with SH non-finite (set to 0) or huge (clamped)
+    // Input index of each surviving Gaussian, in order; empty when nothing was dropped.
+    std::vector<uint32_t> kept_indices;
 
     size_t dropped() const {
         return dropped_nonfinite_position + dropped_nonfinite_rotation + dropped_zero_rotation +

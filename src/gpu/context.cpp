@@ -192,6 +192,8 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
     features.pNext = &features12;
     if (basic.apiVersion >= VK_API_VERSION_1_2) vkGetPhysicalDeviceFeatures2(device, &features);
 
+    info.int64_atomics = features.features.shaderInt64 && features12.shaderBufferInt64Atomics;
+
     const VkSubgroupFeatureFlags needed_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
                                               VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
     if (basic.apiVersion < VK_API_VERSION_1_2)
@@ -295,7 +297,9 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
 
         VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
         features12.bufferDeviceAddress = VK_TRUE;
+        features12.shaderBufferInt64Atomics = d.info.int64_atomics;
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        features.features.shaderInt64 = d.info.int64_atomics;
         features.pNext = &features12;
 
         std::vector<const char*> extensions;

@@ -39,7 +39,17 @@ std::vector<std::vector<uint32_t>> tile_lists(const std::vector<ProjectedGaussia
     return lists;
 }
 
-PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std::vector<uint32_t>& list, glm::dvec2 pixel) {
+// blend_pixel reports each splat that reaches alpha >= 1/255 here (weight 0 for the one that
+// stops the pixel), when the caller gathers statistics.
+void record(GaussianStats* stats, uint32_t i, double weight) {
+    if (!stats) return;
+    stats->blend_weight[i] += weight;
+    stats->max_weight[i] = std::max(stats->max_weight[i], static_cast<float>(weight));
+    ++stats->pixels[i];
+}
+
+PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std::vector<uint32_t>& list, glm::dvec2 pixel,
+                        GaussianStats* stats) {
     PixelResult result;
     uint32_t contributor = 0;
     for (uint32_t i : list) {
@@ -52,8 +62,12 @@ PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std:
         if (alpha < kMinAlpha) continue;
         const double test_t = result.transmittance * (1.0 - alpha);
         // The splat that would push T below the floor is not blended, and nothing after it is.
-        if (test_t < kMinTransmittance) break;
+        if (test_t < kMinTransmittance) {
+            record(stats, i, 0.0);
+            break;
+        }
         const double weight = alpha * result.transmittance;
+        record(stats, i, weight);
         result.color += glm::dvec3(s.color[0], s.color[1], s.color[2]) * weight;
         result.depth_sum += s.depth * weight;
         result.weight_sum += weight;
@@ -83,11 +97,23 @@ RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const Rend
     out.alpha.resize(pixels);
     out.depth.resize(pixels);
     out.contributors.resize(pixels);
+    GaussianStats* stats = settings.gather_stats ? &out.stats : nullptr;
+    if (stats) {
+        stats->resize(cloud.size());
+        for (size_t i = 0; i < splats.size(); ++i) {
+            if (!splats[i].visible) continue;
+            stats->visible[i] = 1;
+            stats->screen_x[i] = static_cast<float>(splats[i].mean.x);
+            stats->screen_y[i] = static_cast<float>(splats[i].mean.y);
+            stats->depth[i] = static_cast<float>(splats[i].depth);
+            stats->radius[i] = static_cast<float>(splats[i].radius);
+        }
+    }
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             const size_t tile = static_cast<size_t>(y / static_cast<int>(kTileHeight)) * grid.x +
                                 static_cast<size_t>(x / static_cast<int>(kTileWidth));
-            const PixelResult p = blend_pixel(splats, lists[tile], glm::dvec2(x, y));
+            const PixelResult p = blend_pixel(splats, lists[tile], glm::dvec2(x, y), stats);
             const size_t i = static_cast<size_t>(y) * camera.width + x;
             for (int c = 0; c < 3; ++c)
                 out.rgb[i * 3 + c] = static_cast<float>(p.color[c] + p.transmittance * settings.background[c]);

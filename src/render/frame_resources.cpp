@@ -67,6 +67,17 @@ void FrameResources::ensure_image(uint32_t pixels, uint32_t tiles) {
     }
 }
 
+void FrameResources::ensure_stats(uint32_t count) {
+    count = std::max(count, 1u);
+    if (count <= stats_capacity) return;
+    const auto& c = *context;
+    stat_weight = device(c, uint64_t(count) * 8, "blend weight per Gaussian");
+    stat_max_weight = device(c, uint64_t(count) * 4, "max weight per Gaussian");
+    stat_pixels = device(c, uint64_t(count) * 4, "pixels per Gaussian");
+    stats_readback = gpu::Buffer(c, uint64_t(count) * 36, gpu::MemoryKind::readback, "statistics readback");
+    stats_capacity = count;
+}
+
 VkDeviceSize FrameResources::readback_bytes(uint32_t pixels) {
     return uint64_t(pixels) * 24 + kCounterCount * sizeof(uint32_t);
 }
@@ -76,7 +87,7 @@ uint64_t FrameResources::device_bytes() const {
     for (const gpu::Buffer* b : {&camera, &counters, &means_depth, &conic_opacity, &colors, &rects, &tiles_touched,
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
-                                 &ranges})
+                                 &ranges, &stat_weight, &stat_max_weight, &stat_pixels})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

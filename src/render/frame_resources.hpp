@@ -28,6 +28,11 @@ struct FrameResources {
     gpu::Buffer tile_keys, tile_values;
     std::unique_ptr<gpu::RadixSort::Scratch> sort_scratch;  // serves the depth and the tile sort
 
+    // Per-Gaussian statistics (allocated on the first frame that asks for them).
+    uint32_t stats_capacity = 0;
+    gpu::Buffer stat_weight, stat_max_weight, stat_pixels;
+    gpu::Buffer stats_readback;  // host-visible: means_depth, visible, weight, max weight, pixels
+
     // Per pixel and per tile.
     uint32_t pixel_capacity = 0, tile_capacity = 0;
     gpu::Buffer color_alpha, depth, contributors, ranges;
@@ -37,6 +42,7 @@ struct FrameResources {
     void ensure_gaussians(uint32_t count);
     void ensure_entries(uint32_t count);
     void ensure_image(uint32_t pixels, uint32_t tiles);
+    void ensure_stats(uint32_t count);
     uint64_t device_bytes() const;
     static VkDeviceSize readback_bytes(uint32_t pixels);
 };

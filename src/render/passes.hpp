@@ -50,8 +50,15 @@ struct BlendPush {
     Address camera, ranges, tile_values, means_depth, conic_opacity, colors, out_color_alpha, out_depth,
         out_contributors;
 };
+// The statistics variant (blend_stats.comp) takes three more buffers after the plain ones.
+struct BlendStatsPush {
+    BlendPush blend;
+    Address stat_weight, stat_max_weight, stat_pixels;
+};
 void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendPush& push,
                   uint32_t tiles_x, uint32_t tiles_y);
+void record_blend_stats(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                        const BlendStatsPush& push, uint32_t tiles_x, uint32_t tiles_y);
 
 // Workgroups for a grid-stride loop over `count` elements, 256 per group, at most 65535 groups.
 uint32_t groups_for(uint32_t count, uint32_t per_group = 256);

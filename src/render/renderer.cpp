@@ -13,6 +13,7 @@
 #include "render/gpu_scene.hpp"
 #include "render/passes.hpp"
 #include "shaders/blend.spv.h"
+#include "shaders/blend_stats.spv.h"
 #include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
 #include "shaders/gather_tile_counts.spv.h"
@@ -43,7 +44,10 @@ struct Renderer::Impl {
     gpu::PrefixScan scan;
     gpu::RadixSort sort;
     gpu::CommandStream stream;
+    std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
     render::GpuScene scene;
+    size_t input_count = 0;                // Gaussians in the cloud given to set_scene
+    std::vector<uint32_t> kept_indices;     // input index of each uploaded Gaussian, if any were dropped
     render::FrameResources frame;
     FrameStats stats;
 
@@ -65,11 +69,24 @@ struct Renderer::Impl {
 
     VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
 
-    void record_frame(const render::CameraParams& params, bool read_back);
+    void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
     void run(const Camera& camera, const RenderSettings& settings, bool read_back);
+    const gpu::ComputePipeline& stats_pipeline();
+    GaussianStats read_stats() const;
 };
 
-void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back) {
+const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
+    if (!blend_stats) {
+        if (!context.info().int64_atomics)
+            throw GpuError("per-Gaussian statistics need 64-bit buffer atomics, which " + context.info().name +
+                           " does not offer");
+        blend_stats = std::make_unique<gpu::ComputePipeline>(context, words(blend_stats_spv), sizeof(render::BlendStatsPush),
+                                                             std::vector<uint32_t>{}, "blend_stats");
+    }
+    return *blend_stats;
+}
+
+void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats) {
     using namespace render;
     const uint32_t n = scene.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
@@ -82,6 +99,11 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     initial_counters[kCounterGaussians] = n;
     stream.update(f.counters, initial_counters, sizeof(initial_counters));
     stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
+    if (gather_stats) {
+        stream.fill(f.stat_weight, 0);
+        stream.fill(f.stat_max_weight, 0);
+        stream.fill(f.stat_pixels, 0);
+    }
     stream.barrier();
 
     record_preprocess(stream, preprocess,
@@ -139,13 +161,26 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     stream.barrier();
     stream.mark("ranges");
 
-    record_blend(stream, blend,
-                 {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.means_depth.address(),
-                  f.conic_opacity.address(), f.colors.address(), f.color_alpha.address(), f.depth.address(),
-                  f.contributors.address()},
-                 tiles_x, tiles_y);
+    const BlendPush blend_push{f.camera.address(),      f.ranges.address(),        f.tile_values.address(),
+                               f.means_depth.address(), f.conic_opacity.address(), f.colors.address(),
+                               f.color_alpha.address(), f.depth.address(),         f.contributors.address()};
+    if (gather_stats)
+        record_blend_stats(stream, *blend_stats,
+                           {blend_push, f.stat_weight.address(), f.stat_max_weight.address(), f.stat_pixels.address()},
+                           tiles_x, tiles_y);
+    else
+        record_blend(stream, blend, blend_push, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
+
+    if (gather_stats) {
+        const uint64_t g = n;
+        stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
+        stream.copy(f.visible, f.stats_readback, g * 4, 0, g * 16);
+        stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 20);
+        stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 28);
+        stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 32);
+    }
 
     const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
     if (read_back) {
@@ -164,13 +199,17 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
     frame.ensure_gaussians(scene.count);
     frame.ensure_image(pixels, tiles);
     if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
+    if (settings.gather_stats) {
+        stats_pipeline();
+        frame.ensure_stats(scene.count);
+    }
 
     stats = {};
     stats.gaussians = scene.count;
     for (;;) {
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
                                                        frame.entry_capacity);
-        record_frame(params, read_back);
+        record_frame(params, read_back, settings.gather_stats);
         uint32_t counters[render::kCounterCount];
         const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
@@ -196,10 +235,39 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
 Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
 Renderer::~Renderer() = default;
 
+GaussianStats Renderer::Impl::read_stats() const {
+    // Layout of the readback: means_depth (vec4), visible, weight (uint64), max weight, pixels.
+    const size_t n = scene.count;
+    const auto* base = static_cast<const char*>(frame.stats_readback.mapped());
+    const auto* means = reinterpret_cast<const float*>(base);
+    const auto* visible = reinterpret_cast<const uint32_t*>(base + n * 16);
+    const auto* weight = reinterpret_cast<const uint64_t*>(base + n * 20);
+    const auto* max_weight = reinterpret_cast<const float*>(base + n * 28);
+    const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 32);
+    GaussianStats out;
+    out.resize(input_count);
+    for (size_t i = 0; i < n; ++i) {
+        const size_t at = kept_indices.empty() ? i : kept_indices[i];
+        out.visible[at] = visible[i] != 0;
+        if (out.visible[at]) {
+            out.screen_x[at] = means[i * 4 + 0];
+            out.screen_y[at] = means[i * 4 + 1];
+            out.depth[at] = means[i * 4 + 2];
+            out.radius[at] = means[i * 4 + 3];
+        }
+        out.blend_weight[at] = double(weight[i]) / 4294967296.0;  // 32.32 fixed point
+        out.max_weight[at] = max_weight[i];
+        out.pixels[at] = pixels[i];
+    }
+    return out;
+}
+
 SanitizeReport Renderer::set_scene(const GaussianCloud& cloud) {
     GaussianCloud copy = cloud;
     SanitizeReport report = sanitize(copy);
     impl_->scene = render::GpuScene::upload(impl_->context, copy);
+    impl_->input_count = cloud.size();
+    impl_->kept_indices = report.kept_indices;
     return report;
 }
 
@@ -223,6 +291,7 @@ RenderOutput Renderer::render(const Camera& camera, const RenderSettings& settin
     std::memcpy(out.depth.data(), base + pixels * 16, pixels * 4);
     out.contributors.resize(pixels);
     std::memcpy(out.contributors.data(), base + pixels * 20, pixels * 4);
+    if (settings.gather_stats) out.stats = impl_->read_stats();
     return out;
 }
 

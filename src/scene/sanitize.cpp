@@ -99,6 +99,8 @@ SanitizeReport sanitize(GaussianCloud& cloud) {
 
     // Kept Gaussians are compacted to the front in their original order.
     size_t kept = 0;
+    std::vector<uint32_t> kept_indices;
+    kept_indices.reserve(cloud.size());
     for (size_t i = 0; i < cloud.size(); ++i) {
         switch (drop_cause(cloud, i)) {
             case DropCause::position: ++report.dropped_nonfinite_position; continue;
@@ -111,9 +113,11 @@ SanitizeReport sanitize(GaussianCloud& cloud) {
         report.replaced_nonfinite_opacity += fix_opacity(cloud.opacity_logits[i]) ? 1 : 0;
         report.replaced_nonfinite_sh += fix_sh(&cloud.sh[i * sh_per], sh_per) ? 1 : 0;
         move_gaussian(cloud, i, kept, sh_per);
+        kept_indices.push_back(static_cast<uint32_t>(i));
         ++kept;
     }
     cloud.resize(kept);
+    if (report.dropped() > 0) report.kept_indices = std::move(kept_indices);
     return report;
 }
 

@@ -41,6 +41,7 @@ TEST(Sanitize, CleanCloudIsUntouched) {
     EXPECT_EQ(report.input_count, 4u);
     EXPECT_EQ(report.changed(), 0u);
     EXPECT_EQ(report.summary(), "clean");
+    EXPECT_TRUE(report.kept_indices.empty());
     EXPECT_EQ(cloud.positions, before.positions);
     EXPECT_EQ(cloud.sh, before.sh);
     EXPECT_EQ(cloud.opacity_logits, before.opacity_logits);
@@ -54,6 +55,7 @@ TEST(Sanitize, DropsNonFinitePositions) {
     EXPECT_EQ(report.dropped_nonfinite_position, 2u);
     EXPECT_EQ(report.dropped(), 2u);
     EXPECT_EQ(x_positions(cloud), (std::vector<float>{0.0f, 2.0f}));
+    EXPECT_EQ(report.kept_indices, (std::vector<uint32_t>{0, 2}));
     EXPECT_NO_THROW(cloud.check_consistent());
 }
 

@@ -21,6 +21,7 @@ struct DeviceInfo {
     uint32_t min_subgroup_size = 0;     // smallest size the driver may pick (AMD: 32 vs 64)
     uint64_t device_local_bytes = 0;    // largest device-local heap
     float timestamp_period_ns = 0;      // 0 when the queue has no timestamps
+    bool int64_atomics = false;         // 64-bit buffer atomics: needed for per-Gaussian statistics
     bool usable = false;                // has what vksplat needs (see unusable_reason)
     std::string unusable_reason;
 

@@ -1,0 +1,80 @@
+#pragma once
+// Scene files other than the INRIA .ply, and one entry point that picks the reader or writer by
+// extension or by name.
+//
+//   format name       extension  read  write  what it is
+//   "ply"             .ply       yes   yes    INRIA 3DGS PLY (io/ply.hpp); reading also accepts a
+//                                             compressed PLY, told apart by its header
+//   "compressed-ply"  .ply       yes   no     PlayCanvas compressed PLY (chunks of 256 splats)
+//   "splat"           .splat     yes   yes    antimatter15 .splat: 32 bytes a splat, SH degree 0
+//   "spz"             .spz       yes   yes    Niantic SPZ (gzip), versions 2 and 3; writes 3
+//   "gsplat-pt"       .pt .pth   yes   no     gsplat checkpoint saved by torch.save (zip + pickle)
+//
+// Every reader throws InputError naming the file and what is wrong with it (truncated, wrong magic
+// or version, counts that overflow or disagree with the file's size, ...). Every writer goes
+// through write_file_atomically, so no half-written file is ever left behind.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "vksplat/io/write_mode.hpp"
+#include "vksplat/scene.hpp"
+
+namespace vksplat::io {
+
+// ---- antimatter15 .splat ----------------------------------------------------------------------
+// 32 bytes a splat, little-endian, no header: position f32x3, scale f32x3 (linear), RGBA u8x4
+// (colour = 0.5 + SH_C0 * f_dc, alpha = sigmoid(opacity), each times 255), quaternion u8x4 (w, x, y,
+// z, each q * 128 + 128). Reading gives SH degree 0, normalised quaternions and log scales; an alpha
+// of 0 or 255 becomes a logit of -/+kMaxOpacityLogit. Writing drops SH above the DC term.
+GaussianCloud read_splat(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+void write_splat(const GaussianCloud& cloud, const std::filesystem::path& path,
+                 WriteMode mode = WriteMode::refuse_existing);
+
+// ---- Niantic .spz -----------------------------------------------------------------------------
+// Reads versions 2 (quaternion as x, y, z bytes) and 3 (quaternion "smallest three" in 4 bytes),
+// SH degree 0 to 3; coordinates are taken as stored (no axis flips, as splat-transform does). Files
+// that use SPZ extensions (flag 0x2) are refused. An alpha of 0 or 255 becomes -/+kMaxOpacityLogit.
+GaussianCloud read_spz(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+// Writes version 3 with 12 fractional bits for positions (fewer when a coordinate would not fit in
+// 24 bits) and SH quantised to the full 8 bits. Throws InputError for non-finite positions or
+// coordinates beyond 2^23 (which SPZ cannot hold).
+void write_spz(const GaussianCloud& cloud, const std::filesystem::path& path,
+               WriteMode mode = WriteMode::refuse_existing);
+
+// ---- PlayCanvas compressed .ply (read only) ---------------------------------------------------
+// Element `chunk` (min/max of position and log scale, optionally of colour, per 256 splats), element
+// `vertex` with packed_position (11-10-11), packed_rotation (2 + 10-10-10, smallest three),
+// packed_scale (11-10-11) and packed_color (8-8-8-8 RGBA), and optionally element `sh` with u8
+// f_rest_* coefficients.
+GaussianCloud read_compressed_ply(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+// True when the file is a PLY whose header declares the compressed layout (a `chunk` element and a
+// `vertex` element with packed_position). Throws InputError if the file is not a PLY at all.
+bool is_compressed_ply(const std::filesystem::path& path);
+
+// ---- gsplat checkpoint .pt (read only) --------------------------------------------------------
+// A torch.save zip archive whose pickle holds {"splats": {means [N,3], quats [N,4] (w,x,y,z),
+// scales [N,3] (log), opacities [N] (logit), sh0 [N,1,3], shN [N,K,3]}, ...} (or those tensors at
+// the top level). Tensors may be float32, float16, bfloat16 or float64, of any strides and storage
+// offsets; entries may be stored or deflated. No Python is involved.
+GaussianCloud read_gsplat_checkpoint(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+
+// ---- any scene file ---------------------------------------------------------------------------
+// The format names read_scene and write_scene accept, in the order above.
+std::vector<std::string> scene_formats();
+// The format of `path` by its extension (case-insensitive); for .ply the header decides between
+// "ply" and "compressed-ply" when the file exists. Throws InputError, listing the supported
+// extensions, for any other extension.
+std::string scene_format_of(const std::filesystem::path& path);
+
+// Reads a scene in the format named by `format`, or by the extension when `format` is empty.
+// "ply" reads either PLY flavour (the header decides). Notes (ignored properties, skipped data, what
+// a format could not hold) are appended to `notes`.
+GaussianCloud read_scene(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr,
+                         std::string format = "");
+// Writes a scene as "ply", "splat" or "spz" (by extension when `format` is empty). The read-only
+// formats, and unknown ones, give InputError.
+void write_scene(const GaussianCloud& cloud, const std::filesystem::path& path,
+                 WriteMode mode = WriteMode::refuse_existing, std::string format = "");
+
+}  // namespace vksplat::io

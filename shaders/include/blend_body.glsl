@@ -1,0 +1,135 @@
+#ifndef GATHER_STATS
+#error define GATHER_STATS before including blend_body.glsl
+#endif
+// The blend pass, included by blend.comp (GATHER_STATS 0) and blend_stats.comp (1), so that the
+// plain pipeline holds no statistics code (and needs no 64-bit integers) at all.
+//
+// Blend: one workgroup per 16x16 tile, one thread per pixel. The tile's depth-sorted splats are
+// fetched cooperatively in batches into shared memory, then every pixel composites them front
+// to back exactly as the reference's renderCUDA: skip where power > 0 or alpha < 1/255, stop
+// before the transmittance would fall below 1e-4, and add the background times what remains.
+#if GATHER_STATS
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+#endif
+
+#include "buffers.glsl"
+#include "constants.glsl"
+#include "frame.glsl"
+
+layout(local_size_x = 16, local_size_y = 16) in;
+const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
+
+#if GATHER_STATS
+// alpha * T in 32.32 fixed point: integer atomics make the sums exact and the same every run.
+const float WEIGHT_SCALE = 4294967296.0;
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };
+#endif
+
+layout(push_constant) uniform Push {
+    CameraBuffer camera;
+    UVec2s ranges;
+    Uints tile_values;
+    Vec4s means_depth;
+    Vec4s conic_opacity;
+    Vec4s colors;
+    Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T
+    Floats out_depth;        // expected depth of the blended splats
+    Uints out_contributors;  // the reference's n_contrib
+#if GATHER_STATS
+    Uint64s stat_weight;     // per Gaussian: sum of alpha * T (fixed point)
+    Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
+    Uints stat_pixels;       // per Gaussian: pixels where alpha >= 1/255
+#endif
+} pc;
+
+#if GATHER_STATS
+void record_stats(uint gaussian, float weight) {
+    if (weight > 0.0) {
+        atomicAdd(pc.stat_weight.v[gaussian], uint64_t(weight * WEIGHT_SCALE));
+        atomicMax(pc.stat_max_weight.v[gaussian], floatBitsToUint(weight));
+    }
+    atomicAdd(pc.stat_pixels.v[gaussian], 1u);
+}
+#endif
+
+shared vec4 batch_mean_depth[BATCH];
+shared vec4 batch_conic_opacity[BATCH];
+shared vec4 batch_color[BATCH];
+#if GATHER_STATS
+shared uint batch_gaussian[BATCH];
+#endif
+shared uint finished_pixels;
+
+void main() {
+    const CameraParams cam = pc.camera.c;
+    const uvec2 pixel = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT) + gl_LocalInvocationID.xy;
+    const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
+    const vec2 pixel_f = vec2(pixel);
+    const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
+
+    float transmittance = 1.0;
+    vec3 color = vec3(0.0);
+    float depth_sum = 0.0;
+    uint contributor = 0u;
+    uint last_contributor = 0u;
+    bool done = !inside;
+
+    for (uint start = range.x; start < range.y; start += BATCH) {
+        // The whole tile stops once every pixel is done (a uniform decision, so the barriers
+        // below stay in uniform control flow).
+        if (gl_LocalInvocationIndex == 0u) finished_pixels = 0u;
+        barrier();
+        if (done) atomicAdd(finished_pixels, 1u);
+        const uint fetch = start + gl_LocalInvocationIndex;
+        if (fetch < range.y) {
+            const uint gaussian = pc.tile_values.v[fetch];
+            batch_mean_depth[gl_LocalInvocationIndex] = pc.means_depth.v[gaussian];
+            batch_conic_opacity[gl_LocalInvocationIndex] = pc.conic_opacity.v[gaussian];
+            batch_color[gl_LocalInvocationIndex] = pc.colors.v[gaussian];
+#if GATHER_STATS
+            batch_gaussian[gl_LocalInvocationIndex] = gaussian;
+#endif
+        }
+        barrier();
+        if (finished_pixels == BATCH) break;
+
+        const uint batch_size = min(BATCH, range.y - start);
+        for (uint j = 0u; !done && j < batch_size; ++j) {
+            ++contributor;
+            const vec4 mean_depth = batch_mean_depth[j];
+            const vec4 conic_o = batch_conic_opacity[j];
+            const vec2 d = mean_depth.xy - pixel_f;
+            const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
+            if (power > 0.0) continue;
+            const float alpha = min(MAX_ALPHA, conic_o.w * exp(power));
+            if (alpha < MIN_ALPHA) continue;
+            const float next_transmittance = transmittance * (1.0 - alpha);
+            if (next_transmittance < MIN_TRANSMITTANCE) {
+                // It stops the pixel without adding to it: still a pixel it decides.
+#if GATHER_STATS
+                record_stats(batch_gaussian[j], 0.0);
+#endif
+                done = true;
+                continue;
+            }
+            const float weight = alpha * transmittance;
+#if GATHER_STATS
+            record_stats(batch_gaussian[j], weight);
+#endif
+            color += batch_color[j].rgb * weight;
+            depth_sum += mean_depth.z * weight;
+            transmittance = next_transmittance;
+            last_contributor = contributor;
+        }
+        barrier();  // the next batch overwrites shared memory
+    }
+
+    if (inside) {
+        const uint index = pixel.y * cam.size.x + pixel.x;
+        const float alpha = 1.0 - transmittance;
+        pc.out_color_alpha.v[index] = vec4(color + transmittance * cam.background.rgb, alpha);
+        pc.out_depth.v[index] = alpha > 0.0 ? depth_sum / alpha : 0.0;
+        pc.out_contributors.v[index] = last_contributor;
+    }
+}

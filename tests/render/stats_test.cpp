@@ -1,0 +1,139 @@
+// Per-Gaussian statistics from the blend pass, against the reference and on scenes where the
+// answer is known.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "vksplat/reference/rasterizer.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::test {
+namespace {
+
+class Stats : public GpuTest {
+protected:
+    RenderSettings with_stats() const {
+        RenderSettings settings;
+        settings.gather_stats = true;
+        return settings;
+    }
+};
+
+TEST_F(Stats, MatchTheReference) {
+    const GaussianCloud cloud = random_scene(31, 600, 2);
+    const Camera camera = forward_camera(160, 120, 120.0);
+    Renderer renderer(context());
+    renderer.set_scene(cloud);
+    const GaussianStats gpu = renderer.render(camera, with_stats()).stats;
+    const GaussianStats ref = reference::render(cloud, camera, with_stats()).stats;
+    ASSERT_EQ(gpu.size(), cloud.size());
+    size_t same_pixels = 0, visible = 0;
+    for (size_t i = 0; i < cloud.size(); ++i) {
+        ASSERT_EQ(gpu.visible[i], ref.visible[i]) << i;
+        if (!ref.visible[i]) {
+            EXPECT_EQ(gpu.pixels[i], 0u);
+            continue;
+        }
+        ++visible;
+        EXPECT_NEAR(gpu.screen_x[i], ref.screen_x[i], 1e-3) << i;
+        EXPECT_NEAR(gpu.screen_y[i], ref.screen_y[i], 1e-3) << i;
+        EXPECT_NEAR(gpu.depth[i], ref.depth[i], 1e-5 * ref.depth[i]) << i;
+        EXPECT_EQ(gpu.radius[i], ref.radius[i]) << i;
+        // A borderline alpha = 1/255 flips a pixel at most; weights agree to float rounding.
+        EXPECT_NEAR(double(gpu.pixels[i]), double(ref.pixels[i]), 2.0 + 1e-3 * ref.pixels[i]) << i;
+        same_pixels += gpu.pixels[i] == ref.pixels[i];
+        EXPECT_NEAR(gpu.blend_weight[i], ref.blend_weight[i], 1e-4 + 1e-4 * ref.blend_weight[i]) << i;
+        EXPECT_NEAR(gpu.max_weight[i], ref.max_weight[i], 1e-5) << i;
+    }
+    EXPECT_GT(visible, 300u);
+    EXPECT_GE(double(same_pixels), 0.98 * double(visible));
+}
+
+TEST_F(Stats, HiddenBehindAnOpaqueWallScoresZero) {
+    GaussianCloud cloud;
+    cloud.sh_degree = 0;
+    const float q[4] = {1, 0, 0, 0}, grey[3] = {0.5f, 0.5f, 0.5f};
+    // Four layers of flat, wide, 0.99-opaque splats: alpha >= 0.93 over the whole view, and
+    // 0.07^4 < 1e-4, so every pixel stops before reaching what lies behind.
+    for (float z : {2.0f, 2.1f, 2.2f, 2.3f}) {
+        const float p[3] = {0, 0, z}, s[3] = {3.0f, 3.0f, 0.01f};
+        add_gaussian(cloud, p, s, q, 0.99f, grey);
+    }
+    const float hidden_p[3] = {0.1f, 0.0f, 5.0f}, hidden_s[3] = {0.2f, 0.2f, 0.2f};
+    add_gaussian(cloud, hidden_p, hidden_s, q, 0.9f, grey);
+    const float off_p[3] = {50.0f, 0.0f, 5.0f};  // far outside the view
+    add_gaussian(cloud, off_p, hidden_s, q, 0.9f, grey);
+
+    Renderer renderer(context());
+    renderer.set_scene(cloud);
+    const GaussianStats stats = renderer.render(forward_camera(64, 64, 64.0), with_stats()).stats;
+    EXPECT_GT(stats.blend_weight[0], 100.0);
+    EXPECT_GT(stats.pixels[3], 0u) << "the last layer stops what the first three left";
+    EXPECT_EQ(stats.visible[4], 1u);
+    EXPECT_EQ(stats.blend_weight[4], 0.0);
+    EXPECT_EQ(stats.pixels[4], 0u);
+    EXPECT_EQ(stats.visible[5], 0u);
+    EXPECT_EQ(stats.pixels[5], 0u);
+}
+
+TEST_F(Stats, DroppingGaussiansThatTouchNoPixelIsLossless) {
+    GaussianCloud cloud = random_scene(32, 800, 3, 2.0f, 8.0f, 0.005f, 0.3f, 4.0f);
+    const GaussianCloud far = random_scene(33, 100, 3, -5.0f, -1.0f);  // behind the camera
+    for (size_t i = 0; i < far.size(); ++i) cloud.append(far, i);
+    const std::vector<Camera> cameras = {forward_camera(120, 90, 100.0), forward_camera(90, 120, 140.0)};
+
+    Renderer renderer(context());
+    renderer.set_scene(cloud);
+    std::vector<uint8_t> keep(cloud.size(), 0);
+    std::vector<RenderOutput> before;
+    for (const Camera& camera : cameras) {
+        before.push_back(renderer.render(camera, with_stats()));
+        for (size_t i = 0; i < cloud.size(); ++i) keep[i] |= before.back().stats.pixels[i] > 0;
+    }
+    const GaussianCloud kept = cloud.subset(keep);
+    ASSERT_LT(kept.size(), cloud.size() - 100) << "some Gaussians must be droppable";
+    renderer.set_scene(kept);
+    for (size_t v = 0; v < cameras.size(); ++v) {
+        const RenderOutput after = renderer.render(cameras[v]);
+        EXPECT_EQ(after.rgb, before[v].rgb) << "view " << v;
+        EXPECT_EQ(after.alpha, before[v].alpha) << "view " << v;
+        EXPECT_EQ(after.depth, before[v].depth) << "view " << v;
+    }
+}
+
+TEST_F(Stats, AskingForStatsChangesNoPixelAndIsDeterministic) {
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(34, 1000, 1));
+    const Camera camera = forward_camera(128, 96, 100.0);
+    const RenderOutput plain = renderer.render(camera);
+    EXPECT_EQ(plain.stats.size(), 0u);
+    const RenderOutput a = renderer.render(camera, with_stats());
+    const RenderOutput b = renderer.render(camera, with_stats());
+    EXPECT_EQ(plain.rgb, a.rgb);
+    EXPECT_EQ(a.stats.blend_weight, b.stats.blend_weight);
+    EXPECT_EQ(a.stats.max_weight, b.stats.max_weight);
+    EXPECT_EQ(a.stats.pixels, b.stats.pixels);
+}
+
+TEST_F(Stats, IndexedLikeTheInputWhenSanitisingDrops) {
+    GaussianCloud cloud = random_scene(35, 50, 0);
+    cloud.positions[3 * 10] = std::numeric_limits<float>::quiet_NaN();
+    Renderer renderer(context());
+    renderer.set_scene(cloud);
+    const GaussianStats stats = renderer.render(forward_camera(64, 64, 60.0), with_stats()).stats;
+    ASSERT_EQ(stats.size(), 50u);
+    EXPECT_EQ(stats.visible[10], 0u);
+    GaussianCloud clean = cloud;
+    clean.positions[3 * 10] = 1000.0f;  // same scene with Gaussian 10 off screen instead
+    const GaussianStats ref = reference::render(clean, forward_camera(64, 64, 60.0), with_stats()).stats;
+    for (size_t i = 0; i < 50; ++i) {
+        if (i == 10) continue;
+        EXPECT_EQ(stats.visible[i], ref.visible[i]) << i;
+        EXPECT_NEAR(stats.blend_weight[i], ref.blend_weight[i], 1e-3) << i;
+    }
+}
+
+}  // namespace
+}  // namespace vksplat::test
