@@ -25,6 +25,8 @@ struct SceneCase {
     std::array<float, 3> background;
 };
 
+void PrintTo(const SceneCase& scene, std::ostream* out) { *out << scene.name; }
+
 class Golden : public GpuTest, public ::testing::WithParamInterface<SceneCase> {
 protected:
     void load() {
