@@ -9,6 +9,7 @@
 #include "constants.glsl"
 #include "frame.glsl"
 #include "sh.glsl"
+#include "tile_culling.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -35,7 +36,17 @@ mat3 covariance_3d(vec3 scale, vec4 q) {
     return m * transpose(m);
 }
 
+// Not drawn. The radius is zeroed too: per-Gaussian statistics read "radius > 0" as visible in
+// the reference's sense (in front of the near plane, non-empty 3-sigma rectangle).
 void cull(uint i) {
+    pc.tiles_touched.v[i] = 0u;
+    pc.visible.v[i] = 0u;
+    pc.means_depth.v[i].w = 0.0;
+}
+
+// Visible to the reference, but touching no pixel (tile_culling.glsl): keep the projection for
+// the statistics, draw nothing.
+void skip_untouched(uint i) {
     pc.tiles_touched.v[i] = 0u;
     pc.visible.v[i] = 0u;
 }
@@ -91,9 +102,24 @@ void main() {
         const uvec2 rect_min = uvec2(max(ivec2(clamp((mean - radius) / tile, vec2(-1.0), grid)), ivec2(0)));
         const uvec2 rect_max =
             uvec2(max(ivec2(clamp((mean + radius + tile - 1.0) / tile, vec2(-1.0), grid)), ivec2(0)));
-        const uint tiles = (rect_max.x - rect_min.x) * (rect_max.y - rect_min.y);
-        if (radius <= 0.0 || tiles == 0u) {
+        if (radius <= 0.0 || any(lessThanEqual(rect_max, rect_min))) {
             cull(i);
+            continue;
+        }
+        pc.means_depth.v[i] = vec4(mean, view.z, radius);
+        // Below 1/255 opacity a splat touches no pixel anywhere (alpha <= opacity).
+        const float bound = touch_bound(position_opacity.w);
+        if (bound < 0.0) {
+            skip_untouched(i);
+            continue;
+        }
+        uvec2 lo, hi;
+        touched_rect(mean, vec3(a, b, c), bound, rect_min, rect_max, lo, hi);
+        uint tiles = 0u;
+        for (uint y = lo.y; y < hi.y; ++y)
+            for (uint x = lo.x; x < hi.x; ++x) tiles += ellipse_meets_tile(mean, conic, bound, uvec2(x, y)) ? 1u : 0u;
+        if (tiles == 0u) {
+            skip_untouched(i);
             continue;
         }
 
@@ -101,10 +127,9 @@ void main() {
         const vec3 color = max(eval_sh(pc.sh, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
                                vec3(0.0));
 
-        pc.means_depth.v[i] = vec4(mean, view.z, radius);
         pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
         pc.colors.v[i] = vec4(color, 0.0);
-        pc.rects.v[i] = uvec2(rect_min.x | (rect_min.y << 16), rect_max.x | (rect_max.y << 16));
+        pc.rects.v[i] = uvec2(lo.x | (lo.y << 16), hi.x | (hi.y << 16));
         pc.tiles_touched.v[i] = tiles;
         pc.visible.v[i] = 1u;
     }

@@ -13,12 +13,15 @@ layout(push_constant) uniform Push {
     Uints counters;
     Uints tile_keys;
     UVec2s ranges;  // out: per tile
+    uint tile_count;  // keys at or past it are padding (tile_culling.glsl) and have no range
 } pc;
 
 void main() {
     const uint count = pc.counters.v[COUNTER_ENTRIES];
+    const uint tile_count = pc.tile_count;
     for (uint e = gl_GlobalInvocationID.x; e < count; e += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
         const uint tile = pc.tile_keys.v[e];
+        if (tile >= tile_count) continue;
         if (e == 0u || pc.tile_keys.v[e - 1u] != tile) pc.ranges.v[tile].x = e;
         if (e + 1u == count || pc.tile_keys.v[e + 1u] != tile) pc.ranges.v[tile].y = e + 1u;
     }

@@ -48,8 +48,9 @@ struct RenderOutput {
     // Expected depth of the blended surface: sum(w_i z_i) / sum(w_i) with w_i = alpha_i T_i and
     // z_i the view-space depth; 0 where nothing was blended.
     std::vector<float> depth;
-    // The reference's n_contrib: how many depth-ordered splats of the pixel's tile were walked up
-    // to and including the last one that contributed.
+    // How many splats were blended into the pixel. (Not the reference's n_contrib, which counts
+    // the splats of the tile's list walked up to the last contributor and so depends on how
+    // tightly tiles are culled; this count does not.)
     std::vector<uint32_t> contributors;
     GaussianStats stats;
 };

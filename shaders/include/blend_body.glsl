@@ -35,7 +35,7 @@ layout(push_constant) uniform Push {
     Vec4s colors;
     Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T
     Floats out_depth;        // expected depth of the blended splats
-    Uints out_contributors;  // the reference's n_contrib
+    Uints out_contributors;  // splats blended into the pixel
 #if GATHER_STATS
     Uint64s stat_weight;     // per Gaussian: sum of alpha * T (fixed point)
     Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
@@ -71,8 +71,7 @@ void main() {
     float transmittance = 1.0;
     vec3 color = vec3(0.0);
     float depth_sum = 0.0;
-    uint contributor = 0u;
-    uint last_contributor = 0u;
+    uint contributors = 0u;
     bool done = !inside;
 
     for (uint start = range.x; start < range.y; start += BATCH) {
@@ -96,7 +95,6 @@ void main() {
 
         const uint batch_size = min(BATCH, range.y - start);
         for (uint j = 0u; !done && j < batch_size; ++j) {
-            ++contributor;
             const vec4 mean_depth = batch_mean_depth[j];
             const vec4 conic_o = batch_conic_opacity[j];
             const vec2 d = mean_depth.xy - pixel_f;
@@ -120,7 +118,7 @@ void main() {
             color += batch_color[j].rgb * weight;
             depth_sum += mean_depth.z * weight;
             transmittance = next_transmittance;
-            last_contributor = contributor;
+            ++contributors;
         }
         barrier();  // the next batch overwrites shared memory
     }
@@ -130,6 +128,6 @@ void main() {
         const float alpha = 1.0 - transmittance;
         pc.out_color_alpha.v[index] = vec4(color + transmittance * cam.background.rgb, alpha);
         pc.out_depth.v[index] = alpha > 0.0 ? depth_sum / alpha : 0.0;
-        pc.out_contributors.v[index] = last_contributor;
+        pc.out_contributors.v[index] = contributors;
     }
 }

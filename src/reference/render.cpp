@@ -18,7 +18,7 @@ struct PixelResult {
     double transmittance = 1.0;
     double depth_sum = 0.0;   // sum of z * alpha * T
     double weight_sum = 0.0;  // sum of alpha * T
-    uint32_t last_contributor = 0;
+    uint32_t contributors = 0;  // splats blended
 };
 
 // The indices of the visible splats overlapping each tile, in the order the reference blends them.
@@ -51,9 +51,7 @@ void record(GaussianStats* stats, uint32_t i, double weight) {
 PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std::vector<uint32_t>& list, glm::dvec2 pixel,
                         GaussianStats* stats) {
     PixelResult result;
-    uint32_t contributor = 0;
     for (uint32_t i : list) {
-        ++contributor;
         const ProjectedGaussian& s = splats[i];
         const glm::dvec2 d = s.mean - pixel;
         const double power = -0.5 * (s.conic.x * d.x * d.x + s.conic.z * d.y * d.y) - s.conic.y * d.x * d.y;
@@ -72,7 +70,7 @@ PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std:
         result.depth_sum += s.depth * weight;
         result.weight_sum += weight;
         result.transmittance = test_t;
-        result.last_contributor = contributor;
+        ++result.contributors;
     }
     return result;
 }
@@ -119,7 +117,7 @@ RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const Rend
                 out.rgb[i * 3 + c] = static_cast<float>(p.color[c] + p.transmittance * settings.background[c]);
             out.alpha[i] = static_cast<float>(1.0 - p.transmittance);
             out.depth[i] = p.weight_sum > 0.0 ? static_cast<float>(p.depth_sum / p.weight_sum) : 0.0f;
-            out.contributors[i] = p.last_contributor;
+            out.contributors[i] = p.contributors;
         }
     return out;
 }

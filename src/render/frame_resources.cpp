@@ -74,7 +74,7 @@ void FrameResources::ensure_stats(uint32_t count) {
     stat_weight = device(c, uint64_t(count) * 8, "blend weight per Gaussian");
     stat_max_weight = device(c, uint64_t(count) * 4, "max weight per Gaussian");
     stat_pixels = device(c, uint64_t(count) * 4, "pixels per Gaussian");
-    stats_readback = gpu::Buffer(c, uint64_t(count) * 36, gpu::MemoryKind::readback, "statistics readback");
+    stats_readback = gpu::Buffer(c, uint64_t(count) * 32, gpu::MemoryKind::readback, "statistics readback");
     stats_capacity = count;
 }
 

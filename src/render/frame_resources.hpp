@@ -31,7 +31,7 @@ struct FrameResources {
     // Per-Gaussian statistics (allocated on the first frame that asks for them).
     uint32_t stats_capacity = 0;
     gpu::Buffer stat_weight, stat_max_weight, stat_pixels;
-    gpu::Buffer stats_readback;  // host-visible: means_depth, visible, weight, max weight, pixels
+    gpu::Buffer stats_readback;  // host-visible: means_depth, weight, max weight, pixels
 
     // Per pixel and per tile.
     uint32_t pixel_capacity = 0, tile_capacity = 0;

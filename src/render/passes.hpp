@@ -35,13 +35,15 @@ void record_gather_tile_counts(gpu::CommandStream& stream, const gpu::ComputePip
                                const GatherTileCountsPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
 
 struct EmitTileEntriesPush {
-    Address camera, counters, depth_values, entry_offsets, rects, tile_keys, tile_values;
+    Address camera, counters, depth_values, entry_offsets, rects, means_depth, conic_opacity, tiles_touched, tile_keys,
+        tile_values;
 };
 void record_emit_tile_entries(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                               const EmitTileEntriesPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
 
 struct TileRangesPush {
     Address counters, tile_keys, ranges;
+    uint32_t tile_count;
 };
 void record_tile_ranges(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const TileRangesPush& push,
                         const gpu::Buffer& args, VkDeviceSize args_offset);

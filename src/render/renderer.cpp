@@ -144,19 +144,22 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
                           f.entry_capacity, 256});
     record_emit_tile_entries(stream, emit_tile_entries,
                              {f.camera.address(), f.counters.address(), f.depth_values.address(),
-                              f.entry_offsets.address(), f.rects.address(), f.tile_keys.address(),
+                              f.entry_offsets.address(), f.rects.address(), f.means_depth.address(),
+                              f.conic_opacity.address(), f.tiles_touched.address(), f.tile_keys.address(),
                               f.tile_values.address()},
                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
     stream.barrier();
     stream.mark("tile entries");
 
-    // A stable sort on just the tile bits keeps each tile's entries in depth order.
-    const uint32_t tile_bits = std::max(1u, static_cast<uint32_t>(std::bit_width(tiles_x * tiles_y - 1)));
+    // A stable sort on just the tile bits keeps each tile's entries in depth order. The bits cover
+    // the padding id (= tile count) too, which sorts after every real tile.
+    const uint32_t tile_bits = static_cast<uint32_t>(std::bit_width(tiles_x * tiles_y));
     sort.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_bits, *f.sort_scratch);
     stream.barrier();
     stream.mark("tile sort");
 
-    record_tile_ranges(stream, tile_ranges, {f.counters.address(), f.tile_keys.address(), f.ranges.address()},
+    record_tile_ranges(stream, tile_ranges,
+                       {f.counters.address(), f.tile_keys.address(), f.ranges.address(), tiles_x * tiles_y},
                        f.counters, kCounterEntryArgs * sizeof(uint32_t));
     stream.barrier();
     stream.mark("ranges");
@@ -176,10 +179,9 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     if (gather_stats) {
         const uint64_t g = n;
         stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
-        stream.copy(f.visible, f.stats_readback, g * 4, 0, g * 16);
-        stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 20);
-        stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 28);
-        stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 32);
+        stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 16);
+        stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 24);
+        stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 28);
     }
 
     const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
@@ -236,19 +238,19 @@ Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(c
 Renderer::~Renderer() = default;
 
 GaussianStats Renderer::Impl::read_stats() const {
-    // Layout of the readback: means_depth (vec4), visible, weight (uint64), max weight, pixels.
+    // Layout of the readback: means_depth (vec4 with the radius, 0 when the reference would cull),
+    // weight (uint64), max weight, pixels.
     const size_t n = scene.count;
     const auto* base = static_cast<const char*>(frame.stats_readback.mapped());
     const auto* means = reinterpret_cast<const float*>(base);
-    const auto* visible = reinterpret_cast<const uint32_t*>(base + n * 16);
-    const auto* weight = reinterpret_cast<const uint64_t*>(base + n * 20);
-    const auto* max_weight = reinterpret_cast<const float*>(base + n * 28);
-    const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 32);
+    const auto* weight = reinterpret_cast<const uint64_t*>(base + n * 16);
+    const auto* max_weight = reinterpret_cast<const float*>(base + n * 24);
+    const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 28);
     GaussianStats out;
     out.resize(input_count);
     for (size_t i = 0; i < n; ++i) {
         const size_t at = kept_indices.empty() ? i : kept_indices[i];
-        out.visible[at] = visible[i] != 0;
+        out.visible[at] = means[i * 4 + 3] > 0.0f;
         if (out.visible[at]) {
             out.screen_x[at] = means[i * 4 + 0];
             out.screen_y[at] = means[i * 4 + 1];
