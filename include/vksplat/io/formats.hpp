@@ -33,7 +33,9 @@ void write_splat(const GaussianCloud& cloud, const std::filesystem::path& path,
 
 // ---- Niantic .spz -----------------------------------------------------------------------------
 // Reads versions 2 (quaternion as x, y, z bytes) and 3 (quaternion "smallest three" in 4 bytes),
-// SH degree 0 to 3; coordinates are taken as stored (no axis flips, as splat-transform does). Files
+// SH degree 0 to 3. SPZ keeps its splats in RUB axes (y up, z back) where PLY and the cloud use RDF
+// (y down, z forward): reading and writing turn them half a turn about x (y, z, the quaternion's y
+// and z, and the SH odd in them change sign), as Niantic's library and splat-transform do. Files
 // that use SPZ extensions (flag 0x2) are refused. An alpha of 0 or 255 becomes -/+kMaxOpacityLogit.
 GaussianCloud read_spz(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
 // Writes version 3 with 12 fractional bits for positions (fewer when a coordinate would not fit in
