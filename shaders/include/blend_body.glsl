@@ -16,9 +16,35 @@
 #include "buffers.glsl"
 #include "constants.glsl"
 #include "frame.glsl"
+#include "tile_culling.glsl"
 
-layout(local_size_x = 16, local_size_y = 16) in;
+layout(local_size_x = 256) in;
 const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
+
+// The tile is walked as 8 blocks of 8x4 pixels, 32 consecutive invocations each (one warp on
+// NVIDIA). When a splat enters shared memory, the thread that fetched it marks which blocks its
+// alpha >= 1/255 ellipse meets (tile_culling.glsl); a pixel skips splats that miss its block
+// without evaluating them. Most splats are a few pixels wide and touch one or two blocks, so
+// most of a tile's evaluations go. Skipped splats have alpha < 1/255 there: pixels are unchanged.
+const uvec2 BLOCK_SIZE = uvec2(8, 4);
+const uint BLOCKS_ACROSS = TILE_WIDTH / BLOCK_SIZE.x;
+
+uvec2 pixel_in_tile(uint invocation) {
+    const uint block = invocation / (BLOCK_SIZE.x * BLOCK_SIZE.y);
+    const uint within = invocation % (BLOCK_SIZE.x * BLOCK_SIZE.y);
+    return uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE +
+           uvec2(within % BLOCK_SIZE.x, within / BLOCK_SIZE.x);
+}
+
+uint touched_blocks(vec2 mean, vec4 conic_opacity, uvec2 tile_origin) {
+    const float bound = touch_bound(conic_opacity.w);
+    uint mask = 0u;
+    for (uint block = 0u; block < TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y); ++block) {
+        const uvec2 first = tile_origin + uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE;
+        if (ellipse_meets_box(mean, conic_opacity.xyz, bound, first, BLOCK_SIZE)) mask |= 1u << block;
+    }
+    return mask;
+}
 
 #if GATHER_STATS
 // alpha * T in 32.32 fixed point: integer atomics make the sums exact and the same every run.
@@ -56,6 +82,7 @@ void record_stats(uint gaussian, float weight) {
 shared vec4 batch_mean_depth[BATCH];
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
+shared uint batch_blocks[BATCH];  // bit b: the splat can touch block b
 #if GATHER_STATS
 shared uint batch_gaussian[BATCH];
 #endif
@@ -63,7 +90,9 @@ shared uint finished_pixels;
 
 void main() {
     const CameraParams cam = pc.camera.c;
-    const uvec2 pixel = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT) + gl_LocalInvocationID.xy;
+    const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
+    const uvec2 pixel = tile_origin + pixel_in_tile(gl_LocalInvocationIndex);
+    const uint my_block = 1u << (gl_LocalInvocationIndex / (BLOCK_SIZE.x * BLOCK_SIZE.y));
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
@@ -83,9 +112,12 @@ void main() {
         const uint fetch = start + gl_LocalInvocationIndex;
         if (fetch < range.y) {
             const uint gaussian = pc.tile_values.v[fetch];
-            batch_mean_depth[gl_LocalInvocationIndex] = pc.means_depth.v[gaussian];
-            batch_conic_opacity[gl_LocalInvocationIndex] = pc.conic_opacity.v[gaussian];
+            const vec4 mean_depth = pc.means_depth.v[gaussian];
+            const vec4 conic_opacity = pc.conic_opacity.v[gaussian];
+            batch_mean_depth[gl_LocalInvocationIndex] = mean_depth;
+            batch_conic_opacity[gl_LocalInvocationIndex] = conic_opacity;
             batch_color[gl_LocalInvocationIndex] = pc.colors.v[gaussian];
+            batch_blocks[gl_LocalInvocationIndex] = touched_blocks(mean_depth.xy, conic_opacity, tile_origin);
 #if GATHER_STATS
             batch_gaussian[gl_LocalInvocationIndex] = gaussian;
 #endif
@@ -95,6 +127,7 @@ void main() {
 
         const uint batch_size = min(BATCH, range.y - start);
         for (uint j = 0u; !done && j < batch_size; ++j) {
+            if ((batch_blocks[j] & my_block) == 0u) continue;
             const vec4 mean_depth = batch_mean_depth[j];
             const vec4 conic_o = batch_conic_opacity[j];
             const vec2 d = mean_depth.xy - pixel_f;

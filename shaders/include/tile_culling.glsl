@@ -28,12 +28,13 @@ float edge_minimum(float fixed_value, float lo, float hi, float c_fixed, float c
     return q;
 }
 
-// True when some point of the tile's pixel-centre box is within the ellipse d^T C d <= bound.
-bool ellipse_meets_tile(vec2 mean, vec3 conic, float bound, uvec2 tile) {
-    // A conic that float rounding left indefinite has no ellipse: keep the whole rectangle.
+// True when some point of the box of pixel centres [first, first + size - 1] is within the
+// ellipse d^T C d <= bound.
+bool ellipse_meets_box(vec2 mean, vec3 conic, float bound, uvec2 first, uvec2 size) {
+    // A conic that float rounding left indefinite has no ellipse: keep the whole box.
     if (!(conic.x > 0.0 && conic.z > 0.0 && conic.x * conic.z > conic.y * conic.y)) return true;
-    precise const vec2 box_lo = vec2(tile * uvec2(TILE_WIDTH, TILE_HEIGHT)) - mean;
-    precise const vec2 box_hi = box_lo + vec2(TILE_WIDTH - 1u, TILE_HEIGHT - 1u);
+    precise const vec2 box_lo = vec2(first) - mean;
+    precise const vec2 box_hi = box_lo + vec2(size - 1u);
     if (all(lessThanEqual(box_lo, vec2(0.0))) && all(greaterThanEqual(box_hi, vec2(0.0)))) return true;
     // The centre is outside the box, so the convex quadratic's minimum lies on its boundary.
     float q = edge_minimum(box_lo.x, box_lo.y, box_hi.y, conic.x, conic.y, conic.z);
@@ -41,6 +42,11 @@ bool ellipse_meets_tile(vec2 mean, vec3 conic, float bound, uvec2 tile) {
     q = min(q, edge_minimum(box_lo.y, box_lo.x, box_hi.x, conic.z, conic.y, conic.x));
     q = min(q, edge_minimum(box_hi.y, box_lo.x, box_hi.x, conic.z, conic.y, conic.x));
     return q <= bound;
+}
+
+bool ellipse_meets_tile(vec2 mean, vec3 conic, float bound, uvec2 tile) {
+    const uvec2 tile_size = uvec2(TILE_WIDTH, TILE_HEIGHT);
+    return ellipse_meets_box(mean, conic, bound, tile * tile_size, tile_size);
 }
 
 // The tile rectangle [lo, hi) that can hold touched pixels: the reference's 3-sigma rectangle
