@@ -1,8 +1,9 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// RadixSort per pass, step 1: each workgroup counts the digits of its blocks of keys and writes
-// hist[digit * blocks + block], the layout whose exclusive scan gives every (digit, block) its
-// first output position. Workgroups walk the blocks in a grid-stride loop.
+// RadixSort per pass, step 1: each workgroup counts the digits of its blocks of keys, writes
+// hist[digit * blocks + block] and adds them to the pass's per-digit totals, from which step 2
+// gives every (digit, block) its first output position. Workgroups walk the blocks in a
+// grid-stride loop.
 #include "buffers.glsl"
 
 layout(local_size_x_id = 0) in;
@@ -14,6 +15,7 @@ layout(push_constant) uniform Push {
     Uints keys;
     Uints hist;
     Uints control;
+    Uints totals;  // keys per digit in this pass (zeroed before the sort)
     uint shift;  // first bit of the digit
     uint bits;   // digit width, 0..8 (0: every key has digit 0)
 } pc;
@@ -35,7 +37,10 @@ void main() {
             if (index < count) atomicAdd(counts[(pc.keys.v[index] >> pc.shift) & mask], 1u);
         }
         barrier();
-        for (uint d = gl_LocalInvocationIndex; d < radix; d += size) pc.hist.v[d * blocks + block] = counts[d];
+        for (uint d = gl_LocalInvocationIndex; d < radix; d += size) {
+            pc.hist.v[d * blocks + block] = counts[d];
+            if (counts[d] != 0u) atomicAdd(pc.totals.v[d], counts[d]);
+        }
         barrier();
     }
 }

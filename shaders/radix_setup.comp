@@ -1,20 +1,17 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // RadixSort step 0 (one invocation, once per sort): reads the key count the GPU left at `count`,
-// clamps it to what the buffers hold and writes the block count, the indirect dispatch size of
-// the per-block kernels and the histogram lengths (the counts of its scans) into the control
-// words (layout in radix_sort.cpp).
+// clamps it to what the buffers hold and writes the block count and the indirect dispatch size
+// of the per-block kernels into the control words (layout in radix_sort.cpp).
 #include "buffers.glsl"
 
 layout(local_size_x = 1) in;
 
 layout(push_constant) uniform Push {
     Uints count;
-    Uints control;  // [0..2] DispatchArgs, [3] count, [4] blocks, [5] radix_a*blocks, [6] radix_b*blocks
+    Uints control;  // [0..2] DispatchArgs, [3] count, [4] blocks
     uint capacity;
     uint block;     // keys per block
-    uint radix_a;   // the two digit sizes the passes use
-    uint radix_b;
 } pc;
 
 void main() {
@@ -25,6 +22,4 @@ void main() {
     pc.control.v[2] = 1;
     pc.control.v[3] = count;
     pc.control.v[4] = blocks;
-    pc.control.v[5] = pc.radix_a * blocks;
-    pc.control.v[6] = pc.radix_b * blocks;
 }

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "shaders/radix_histogram.spv.h"
+#include "shaders/radix_scan_histogram.spv.h"
 #include "shaders/radix_scatter.spv.h"
 #include "shaders/radix_setup.spv.h"
 
@@ -44,17 +45,28 @@ struct SetupPush {
     VkDeviceAddress control;
     uint32_t capacity;
     uint32_t block;
-    uint32_t radix_a;
-    uint32_t radix_b;
 };
 
 struct HistogramPush {
     VkDeviceAddress keys;
     VkDeviceAddress histogram;
     VkDeviceAddress control;
+    VkDeviceAddress totals;
     uint32_t shift;
     uint32_t bits;
 };
+
+struct ScanHistogramPush {
+    VkDeviceAddress histogram;
+    VkDeviceAddress control;
+    VkDeviceAddress totals;
+    uint32_t bits;
+};
+
+// Control buffer: 16 words written by radix_setup, then per-digit totals for each pass.
+constexpr uint32_t kMaxPasses = 4;
+constexpr VkDeviceSize kTotalsOffset = 64;
+constexpr VkDeviceSize kTotalsBytes = VkDeviceSize(kMaxPasses) * kRadixMax * 4;
 
 struct ScatterPush {
     VkDeviceAddress keys_in;
@@ -75,10 +87,9 @@ RadixSort::Scratch::Scratch(const Context& context, uint32_t max_count)
       values_(context, VkDeviceSize(max_count) * 4, MemoryKind::device, "radix sort values"),
       histogram_(context, VkDeviceSize(kRadixMax) * blocks_for(max_count, config_for(context.info()).block_size()) * 4,
                  MemoryKind::device, "radix sort histogram"),
-      control_(context, 64, MemoryKind::device, "radix sort control"),
-      scan_(context, kRadixMax * blocks_for(max_count, config_for(context.info()).block_size())) {}
+      control_(context, kTotalsOffset + kTotalsBytes, MemoryKind::device, "radix sort control") {}
 
-RadixSort::RadixSort(const Context& context) : scan_(context) {
+RadixSort::RadixSort(const Context& context) {
     const Config config = config_for(context.info());
     block_size_ = config.block_size();
     setup_ = std::make_unique<ComputePipeline>(context, radix_setup_spv, sizeof(SetupPush), std::vector<uint32_t>{},
@@ -86,6 +97,9 @@ RadixSort::RadixSort(const Context& context) : scan_(context) {
     histogram_ = std::make_unique<ComputePipeline>(context, radix_histogram_spv, sizeof(HistogramPush),
                                                    std::vector<uint32_t>{config.workgroup_size, kItemsPerThread},
                                                    "radix_histogram");
+    scan_histogram_ = std::make_unique<ComputePipeline>(
+        context, radix_scan_histogram_spv, sizeof(ScanHistogramPush),
+        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups}, "radix_scan_histogram");
     scatter_ = std::make_unique<ComputePipeline>(
         context, radix_scatter_spv, sizeof(ScatterPush),
         std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups}, "radix_scatter");
@@ -106,9 +120,9 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
 
     const uint64_t capacity = std::min<uint64_t>({scratch.capacity(), keys.size() / 4, values.size() / 4});
     const VkDeviceAddress control = scratch.control_.address();
+    stream.fill(scratch.control_, 0, kTotalsOffset, kTotalsBytes);
     stream.dispatch(*setup_,
-                    SetupPush{count_address, control, static_cast<uint32_t>(capacity), block_size_, 1u << (base + 1),
-                              1u << base},
+                    SetupPush{count_address, control, static_cast<uint32_t>(capacity), block_size_},
                     1);
     stream.barrier();
 
@@ -119,13 +133,14 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
     uint32_t shift = 0;
     for (uint32_t pass = 0; pass < passes; ++pass) {
         const uint32_t bits = base + (pass < extra ? 1 : 0);
-        // Histogram length = radix x blocks, which setup wrote at [5] (radix_a) or [6] (radix_b).
-        const VkDeviceAddress hist_length = control + (pass < extra ? 5 : 6) * sizeof(uint32_t);
+        const VkDeviceAddress totals = control + kTotalsOffset + VkDeviceSize(pass) * kRadixMax * 4;
         stream.dispatch_indirect(*histogram_,
-                                 HistogramPush{source_keys->address(), scratch.histogram_.address(), control, shift, bits},
+                                 HistogramPush{source_keys->address(), scratch.histogram_.address(), control, totals,
+                                               shift, bits},
                                  scratch.control_, 0);
         stream.barrier();
-        scan_.record(stream, scratch.histogram_.address(), scratch.histogram_.address(), hist_length, 0, scratch.scan_);
+        stream.dispatch(*scan_histogram_, ScanHistogramPush{scratch.histogram_.address(), control, totals, bits},
+                        1u << bits);
         stream.barrier();
         stream.dispatch_indirect(*scatter_,
                                  ScatterPush{source_keys->address(), source_values->address(), target_keys->address(),

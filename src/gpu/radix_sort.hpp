@@ -1,7 +1,8 @@
 #pragma once
 // RadixSort: stable LSD radix sort of (key, value) uint32 pairs on the GPU, by the low key_bits
 // bits of the keys, with the count read from GPU memory. Per pass (digits of up to 8 bits):
-// per-block digit histogram -> exclusive scan of it (PrefixScan) -> stable scatter: keys ranked
+// per-block digit histogram (and per-digit totals) -> one-dispatch scan into output positions ->
+// stable scatter: keys ranked
 // with subgroup ballots, each block reordered by digit in shared memory, then written in runs.
 // Works for any subgroup size (sizes come from DeviceInfo as specialisation constants; the
 // workgroup size is a multiple of the subgroup size, and subgroups are assumed to be full, as
@@ -12,7 +13,6 @@
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
 #include "gpu/compute_pipeline.hpp"
-#include "gpu/prefix_scan.hpp"
 
 namespace vksplat::gpu {
 
@@ -31,7 +31,7 @@ public:
         uint32_t capacity() const { return capacity_; }
         // Device memory held (for memory statistics).
         uint64_t device_bytes() const {
-            return keys_.size() + values_.size() + histogram_.size() + control_.size() + scan_.device_bytes();
+            return keys_.size() + values_.size() + histogram_.size() + control_.size();
         }
 
     private:
@@ -40,8 +40,7 @@ public:
         Buffer keys_;       // ping-pong partner of the caller's keys
         Buffer values_;     // ... and values
         Buffer histogram_;  // radix x blocks digit counts, scanned in place
-        Buffer control_;    // [0..2] DispatchArgs, [3] count, [4] blocks, [5..6] histogram lengths
-        PrefixScan::Scratch scan_;
+        Buffer control_;    // [0..2] DispatchArgs, [3] count, [4] blocks; per-pass digit totals
     };
 
     // Stable LSD sort of (key, value) uint32 pairs by the low key_bits (1..32) bits of the keys.
@@ -58,7 +57,7 @@ public:
     uint32_t block_size() const { return block_size_; }
 
 private:
-    PrefixScan scan_;
+    std::unique_ptr<ComputePipeline> scan_histogram_;
     uint32_t block_size_ = 0;
     std::unique_ptr<ComputePipeline> setup_;
     std::unique_ptr<ComputePipeline> histogram_;
