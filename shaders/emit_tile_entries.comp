@@ -39,8 +39,8 @@ void main() {
         const uint end = min(first + pc.tiles_touched.v[gaussian], capacity);
         uint slot = first;
         for (uint y = lo.y; y < hi.y && slot < end; ++y) {
-            for (uint x = lo.x; x < hi.x && slot < end; ++x) {
-                if (!ellipse_meets_tile(mean, conic_o.xyz, bound, uvec2(x, y))) continue;
+            const uvec2 span = row_tile_span(mean, conic_o.xyz, bound, y, lo.x, hi.x);
+            for (uint x = span.x; x < span.y && slot < end; ++x) {
                 pc.tile_keys.v[slot] = y * tiles_x + x;
                 pc.tile_values.v[slot] = gaussian;
                 ++slot;

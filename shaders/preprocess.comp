@@ -116,8 +116,10 @@ void main() {
         uvec2 lo, hi;
         touched_rect(mean, vec3(a, b, c), bound, rect_min, rect_max, lo, hi);
         uint tiles = 0u;
-        for (uint y = lo.y; y < hi.y; ++y)
-            for (uint x = lo.x; x < hi.x; ++x) tiles += ellipse_meets_tile(mean, conic, bound, uvec2(x, y)) ? 1u : 0u;
+        for (uint y = lo.y; y < hi.y; ++y) {
+            const uvec2 span = row_tile_span(mean, conic, bound, y, lo.x, hi.x);
+            tiles += span.y - span.x;
+        }
         if (tiles == 0u) {
             skip_untouched(i);
             continue;

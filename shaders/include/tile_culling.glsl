@@ -61,6 +61,33 @@ void touched_rect(vec2 mean, vec3 cov, float bound, uvec2 rect_lo, uvec2 rect_hi
     hi = min(rect_hi, uvec2(clamp(floor(last / tile) + 1.0, vec2(0.0), vec2(rect_hi))));
 }
 
+// The tiles [first, end) of tile row `row` (within [x_lo, x_hi)) that the ellipse meets: the
+// same tiles ellipse_meets_tile keeps, found in O(1) per row instead of one test per tile, which
+// matters for the few huge splats that span thousands of tiles. The ellipse's part inside the
+// row's band of pixel centres is convex, so its x-extent is an interval: the right boundary
+// x(dy) = (-b dy + sqrt(D)) / a is concave in dy and peaks at the ellipse's rightmost point, so
+// its maximum over the band is at that point's dy clamped into the band (the left likewise).
+uvec2 row_tile_span(vec2 mean, vec3 conic, float bound, uint row, uint x_lo, uint x_hi) {
+    const float a = conic.x, b = conic.y, c = conic.z;
+    precise const float det = a * c - b * b;
+    if (!(a > 0.0 && c > 0.0 && det > 0.0)) return uvec2(x_lo, x_hi);
+    precise const float y_reach = sqrt(bound * a / det);   // half-height of the ellipse
+    precise const float x_reach = sqrt(bound * c / det);   // half-width
+    precise const float band_lo = max(float(row * TILE_HEIGHT) - mean.y, -y_reach);
+    precise const float band_hi = min(float(row * TILE_HEIGHT + TILE_HEIGHT - 1u) - mean.y, y_reach);
+    if (band_lo > band_hi) return uvec2(x_lo, x_lo);
+    precise const float dy_right = clamp(-b * x_reach / c, band_lo, band_hi);
+    precise const float dy_left = clamp(b * x_reach / c, band_lo, band_hi);
+    precise const float right = (-b * dy_right + sqrt(max(bound * a - det * dy_right * dy_right, 0.0))) / a;
+    precise const float left = (-b * dy_left - sqrt(max(bound * a - det * dy_left * dy_left, 0.0))) / a;
+    // Tile x meets [mean.x + left, mean.x + right] when 16 x <= right end and 16 x + 15 >= left end.
+    const float first = ceil((mean.x + left - float(TILE_WIDTH - 1u)) / float(TILE_WIDTH));
+    const float last = floor((mean.x + right) / float(TILE_WIDTH));
+    const uint span_first = uint(clamp(first, float(x_lo), float(x_hi)));
+    const uint span_end = uint(clamp(last + 1.0, float(span_first), float(x_hi)));
+    return uvec2(span_first, span_end);
+}
+
 // A tile id past every real tile: emit_tile_entries pads with it if it ever finds fewer tiles than
 // preprocess counted (it never should), so a splat can neither spill into its neighbour's
 // entries nor leave stale ones; it sorts last and tile_ranges ignores it.
