@@ -13,6 +13,8 @@ packages=(
   libglm-dev libeigen3-dev libopencv-dev libnanoflann-dev
   libgtest-dev libcli11-dev nlohmann-json3-dev
 )
+# The test suite also drives headless Chromium to check that the HTML reports draw.
+[ "$mode" = test ] && packages+=(chromium)
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 missing=()
