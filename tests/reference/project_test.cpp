@@ -4,9 +4,10 @@
 #include <cmath>
 #include <numbers>
 
-#include "reference/splat_scene.hpp"
+#include "support/scenes.hpp"
 #include "vksplat/constants.hpp"
 #include "vksplat/reference/rasterizer.hpp"
+#include "vksplat/reference/sh.hpp"
 
 namespace vksplat::reference {
 namespace {
@@ -14,7 +15,7 @@ namespace {
 using namespace vksplat::constants;
 using test::add_splat;
 using test::at_pixel;
-using test::identity_camera;
+using test::forward_camera;
 using test::Splat;
 
 // float log-scales and logits carry ~1e-7 relative error into the expected values.
@@ -28,7 +29,7 @@ ProjectedGaussian project_one(const Splat& splat, const Camera& camera, int degr
 
 TEST(Project, IsotropicGaussianFacingTheCamera) {
     // 65 x 65 so that the centre of the view lands on pixel (32, 32): u = fx x/z + cx - 0.5.
-    const Camera camera = identity_camera(65, 65, 100.0);
+    const Camera camera = forward_camera(65, 65, 100.0);
     const Splat splat{.position = {0.0, 0.0, 5.0}, .scale = glm::dvec3(0.1), .opacity = 0.5};
     const ProjectedGaussian p = project_one(splat, camera);
     ASSERT_TRUE(p.visible);
@@ -54,7 +55,7 @@ TEST(Project, IsotropicGaussianFacingTheCamera) {
 }
 
 TEST(Project, NearPlaneCull) {
-    const Camera camera = identity_camera(64, 64, 50.0);
+    const Camera camera = forward_camera(64, 64, 50.0);
     EXPECT_FALSE(project_one({.position = {0.0, 0.0, 0.19}}, camera).visible);
     EXPECT_FALSE(project_one({.position = {0.0, 0.0, kNearPlane}}, camera).visible);  // "z <= near" is culled
     EXPECT_TRUE(project_one({.position = {0.0, 0.0, 0.21}}, camera).visible);
@@ -64,7 +65,7 @@ TEST(Project, NearPlaneCull) {
 }
 
 TEST(Project, QuaternionIsWFirstAndNormalised) {
-    const Camera camera = identity_camera(64, 64, 100.0);
+    const Camera camera = forward_camera(64, 64, 100.0);
     const double h = std::numbers::sqrt2 / 2.0;
     // Scales (0.2, 0.1, 0.1) at z = 5: f^2/z^2 = 400, so variances 16 and 4 px^2.
     Splat splat{.position = {0.0, 0.0, 5.0}, .scale = {0.2, 0.1, 0.1}};
@@ -91,7 +92,7 @@ TEST(Project, QuaternionIsWFirstAndNormalised) {
 }
 
 TEST(Project, JacobianIsClampedBeyondTheImage) {
-    const Camera camera = identity_camera(65, 65, 100.0);
+    const Camera camera = forward_camera(65, 65, 100.0);
     // x/z = +-10 is far outside the view; the Jacobian is taken at x/z = +-1.3 tan(fov/2).
     const double f2 = 100.0 * 100.0 / 25.0, sigma2 = 0.01;
     for (double side : {1.0, -1.0}) {
@@ -123,7 +124,7 @@ TEST(Project, JacobianIsClampedBeyondTheImage) {
 }
 
 TEST(Project, TileRectangleTruncatesTowardZero) {
-    const Camera camera = identity_camera(100, 50, 100.0);  // grid 7 x 4, last row and column partial
+    const Camera camera = forward_camera(100, 50, 100.0);  // grid 7 x 4, last row and column partial
     // sigma^2 f^2 / z^2 = 0.5 on the axis, growing to at most 0.72 at the edges with the Jacobian's
     // off-axis term: 3 sqrt(s + 0.3 + sqrt(0.1)) stays in (3, 4), so the radius is 4 in every case.
     const double sigma = std::sqrt(0.5) * 5.0 / 100.0;
@@ -152,7 +153,7 @@ TEST(Project, TileRectangleTruncatesTowardZero) {
 }
 
 TEST(Project, ColourIsShAlongTheViewingRayPlusOffsetClampedAtZero) {
-    const Camera camera = identity_camera(64, 64, 10.0);  // wide enough to see both splats
+    const Camera camera = forward_camera(64, 64, 10.0);  // wide enough to see both splats
     GaussianCloud cloud;
     cloud.sh_degree = 1;
     add_splat(cloud, {.position = {0.0, 0.0, 5.0}, .color = {0.5, 0.5, 0.5}});  // DC 0

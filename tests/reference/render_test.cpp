@@ -5,7 +5,7 @@
 #include <cmath>
 #include <random>
 
-#include "reference/splat_scene.hpp"
+#include "support/scenes.hpp"
 #include "vksplat/constants.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/reference/rasterizer.hpp"
@@ -16,11 +16,11 @@ namespace {
 using namespace vksplat::constants;
 using test::add_splat;
 using test::at_pixel;
-using test::identity_camera;
+using test::forward_camera;
 using test::Splat;
 
 // 65 x 65 so that a splat on the optical axis is centred on pixel (32, 32).
-const Camera kCamera = identity_camera(65, 65, 100.0);
+const Camera kCamera = forward_camera(65, 65, 100.0);
 constexpr int kCentre = 32 * 65 + 32;
 
 RenderOutput render_splats(const std::vector<Splat>& splats, const Camera& camera = kCamera,
@@ -111,10 +111,10 @@ TEST(Render, StopsBeforeTransmittanceFallsBelowTheFloor) {
     EXPECT_EQ(out.contributors[kCentre], 5u);
     EXPECT_NEAR(out.alpha[kCentre], 1.0 - std::pow(0.2, 5), 1e-6);
 
-    // A splat too faint to count (alpha < 1/255) in front still counts as walked past.
+    // A splat too faint to count (alpha < 1/255) in front is not blended, so not counted.
     stack.push_back({.position = {0.0, 0.0, 1.0}, .opacity = 0.003});
     out = render_splats(stack);
-    EXPECT_EQ(out.contributors[kCentre], 6u);
+    EXPECT_EQ(out.contributors[kCentre], 5u);
     EXPECT_NEAR(out.alpha[kCentre], 1.0 - std::pow(0.2, 5), 1e-6);
 
     // At the alpha cap, (1 - 0.99f)^2 = 9.99998e-5 is already below 0.0001f: one splat only, as in
@@ -152,7 +152,7 @@ TEST(Render, OffCentrePrincipalPointShiftsTheImage) {
 }
 
 TEST(Render, AnyImageSizeRendersEveryPixel) {
-    const Camera camera = identity_camera(333, 777, 400.0);
+    const Camera camera = forward_camera(333, 777, 400.0);
     // Splats centred on the last pixel of the partial tile column and row, and on the first pixel.
     const RenderOutput out = render_splats({{.position = at_pixel(camera, 332.0, 776.0, 5.0), .opacity = 0.5},
                                             {.position = at_pixel(camera, 0.0, 0.0, 5.0), .opacity = 0.4}},
@@ -191,7 +191,7 @@ TEST(Render, RejectsAnInvalidCameraOrCloud) {
 // Binning by tiles must not change the result: every pixel equals blending, in (float depth,
 // index) order, all the visible splats whose tile rectangle covers that pixel's tile.
 TEST(Render, TileListsMatchAPerPixelSelection) {
-    const Camera camera = identity_camera(70, 45, 60.0);
+    const Camera camera = forward_camera(70, 45, 60.0);
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
     GaussianCloud cloud;

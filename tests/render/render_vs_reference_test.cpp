@@ -89,15 +89,13 @@ TEST_F(RenderVsReference, HugeGaussians) {
 
 TEST_F(RenderVsReference, BehindAndStraddlingTheNearPlane) {
     GaussianCloud cloud;
-    cloud.sh_degree = 0;
-    const float q[4] = {1, 0, 0, 0};
-    const float rgb[3] = {0.9f, 0.4f, 0.1f};
-    const float depths[] = {-2.0f, -0.1f, 0.0f, 0.1f, 0.19f, 0.2f, 0.21f, 0.3f, 0.5f, 1.0f};
+    const double depths[] = {-2.0, -0.1, 0.0, 0.1, 0.19, 0.2, 0.21, 0.3, 0.5, 1.0};
     int k = 0;
-    for (float z : depths) {
-        const float p[3] = {0.05f * float(k % 3 - 1), 0.04f * float(k % 2), z};
-        const float s[3] = {0.3f, 0.2f, 0.5f};  // large enough to straddle z = 0.2
-        add_gaussian(cloud, p, s, q, 0.6f, rgb);
+    for (double z : depths) {
+        add_splat(cloud, {.position = {0.05 * (k % 3 - 1), 0.04 * (k % 2), z},
+                          .scale = {0.3, 0.2, 0.5},  // large enough to straddle z = 0.2
+                          .opacity = 0.6,
+                          .color = {0.9, 0.4, 0.1}});
         ++k;
     }
     expect_match(cloud, forward_camera(96, 80, 60.0));
@@ -105,19 +103,15 @@ TEST_F(RenderVsReference, BehindAndStraddlingTheNearPlane) {
 
 TEST_F(RenderVsReference, GaussiansOnTileBorders) {
     GaussianCloud cloud;
-    cloud.sh_degree = 0;
     const Camera camera = forward_camera(64, 64, 64.0);
-    const float q[4] = {1, 0, 0, 0};
     int k = 0;
-    // Centres at pixel coordinates on and around the tile borders 16, 32, 48 (pixel centres sit
-    // at integer coordinates: u = fx x / z + cx - 0.5).
-    for (float u : {15.0f, 15.5f, 16.0f, 31.5f, 32.0f, 47.9f}) {
-        for (float v : {15.5f, 16.0f, 32.0f, 48.1f}) {
-            const float z = 4.0f;
-            const float p[3] = {(u - 31.5f) * z / 64.0f, (v - 31.5f) * z / 64.0f, z + 0.01f * float(k)};
-            const float s[3] = {0.02f + 0.01f * float(k % 4), 0.03f, 0.02f};
-            const float rgb[3] = {float(k % 3) * 0.4f, float(k % 5) * 0.2f, 0.5f};
-            add_gaussian(cloud, p, s, q, 0.8f, rgb);
+    // Centres at pixel coordinates on and around the tile borders 16, 32, 48.
+    for (double u : {15.0, 15.5, 16.0, 31.5, 32.0, 47.9}) {
+        for (double v : {15.5, 16.0, 32.0, 48.1}) {
+            add_splat(cloud, {.position = at_pixel(camera, u, v, 4.0 + 0.01 * k),
+                              .scale = {0.02 + 0.01 * (k % 4), 0.03, 0.02},
+                              .opacity = 0.8,
+                              .color = {(k % 3) * 0.4, (k % 5) * 0.2, 0.5}});
             ++k;
         }
     }
@@ -135,24 +129,23 @@ TEST_F(RenderVsReference, OffCentrePrincipalPoint) {
 
 TEST_F(RenderVsReference, OpaqueStackStopsAtTheTransmittanceFloor) {
     GaussianCloud cloud;
-    cloud.sh_degree = 0;
-    const float q[4] = {1, 0, 0, 0};
     for (int k = 0; k < 40; ++k) {
         // Inserted far to near, so the sort has work to do.
-        const float p[3] = {0.01f * float(k % 3), -0.01f * float(k % 2), 10.0f - 0.2f * float(k)};
-        const float s[3] = {0.4f, 0.4f, 0.05f};
-        const float rgb[3] = {float(k % 2), float(k % 3) * 0.5f, 0.25f};
-        add_gaussian(cloud, p, s, q, 0.99f, rgb);
+        add_splat(cloud, {.position = {0.01 * (k % 3), -0.01 * (k % 2), 10.0 - 0.2 * k},
+                          .scale = {0.4, 0.4, 0.05},
+                          .opacity = 0.99,
+                          .color = {double(k % 2), (k % 3) * 0.5, 0.25}});
     }
     expect_match(cloud, forward_camera(64, 64, 64.0));
 }
 
 TEST_F(RenderVsReference, SingleGaussian) {
     GaussianCloud cloud;
-    cloud.sh_degree = 0;
-    const float p[3] = {0.1f, -0.05f, 3.0f}, s[3] = {0.2f, 0.1f, 0.05f}, q[4] = {0.9f, 0.1f, 0.3f, -0.2f};
-    const float rgb[3] = {0.2f, 0.7f, 0.9f};
-    add_gaussian(cloud, p, s, q, 0.7f, rgb);
+    add_splat(cloud, {.position = {0.1, -0.05, 3.0},
+                      .scale = {0.2, 0.1, 0.05},
+                      .rotation = {0.9, 0.1, 0.3, -0.2},
+                      .opacity = 0.7,
+                      .color = {0.2, 0.7, 0.9}});
     expect_match(cloud, forward_camera(80, 60, 70.0));
 }
 

@@ -53,18 +53,11 @@ TEST_F(Stats, MatchTheReference) {
 
 TEST_F(Stats, HiddenBehindAnOpaqueWallScoresZero) {
     GaussianCloud cloud;
-    cloud.sh_degree = 0;
-    const float q[4] = {1, 0, 0, 0}, grey[3] = {0.5f, 0.5f, 0.5f};
     // Four layers of flat, wide, 0.99-opaque splats: alpha >= 0.93 over the whole view, and
     // 0.07^4 < 1e-4, so every pixel stops before reaching what lies behind.
-    for (float z : {2.0f, 2.1f, 2.2f, 2.3f}) {
-        const float p[3] = {0, 0, z}, s[3] = {3.0f, 3.0f, 0.01f};
-        add_gaussian(cloud, p, s, q, 0.99f, grey);
-    }
-    const float hidden_p[3] = {0.1f, 0.0f, 5.0f}, hidden_s[3] = {0.2f, 0.2f, 0.2f};
-    add_gaussian(cloud, hidden_p, hidden_s, q, 0.9f, grey);
-    const float off_p[3] = {50.0f, 0.0f, 5.0f};  // far outside the view
-    add_gaussian(cloud, off_p, hidden_s, q, 0.9f, grey);
+    for (double z : {2.0, 2.1, 2.2, 2.3}) add_splat(cloud, {.position = {0, 0, z}, .scale = {3, 3, 0.01}, .opacity = 0.99});
+    add_splat(cloud, {.position = {0.1, 0.0, 5.0}, .scale = {0.2, 0.2, 0.2}, .opacity = 0.9});
+    add_splat(cloud, {.position = {50.0, 0.0, 5.0}, .scale = {0.2, 0.2, 0.2}, .opacity = 0.9});  // far off screen
 
     Renderer renderer(context());
     renderer.set_scene(cloud);

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <random>
 
+#include "vksplat/reference/sh.hpp"
+
 namespace vksplat::test {
 
 Camera forward_camera(int width, int height, double focal) {
@@ -16,18 +18,21 @@ Camera forward_camera(int width, int height, double focal) {
     return camera;
 }
 
-void add_gaussian(GaussianCloud& cloud, const float position[3], const float scale[3], const float quaternion[4],
-                  float opacity, const float rgb[3]) {
-    constexpr float kShC0 = 0.28209479177387814f;
+void add_splat(GaussianCloud& cloud, const Splat& s) {
     const size_t i = cloud.size();
     cloud.resize(i + 1);
     for (int k = 0; k < 3; ++k) {
-        cloud.positions[3 * i + k] = position[k];
-        cloud.log_scales[3 * i + k] = std::log(scale[k]);
-        cloud.sh[i * size_t(cloud.sh_coefficients()) * 3 + k] = (rgb[k] - 0.5f) / kShC0;
+        cloud.positions[i * 3 + k] = static_cast<float>(s.position[k]);
+        cloud.log_scales[i * 3 + k] = static_cast<float>(std::log(s.scale[k]));
+        // colour = C0 * dc + 0.5
+        cloud.sh[i * size_t(cloud.sh_coefficients()) * 3 + k] = static_cast<float>((s.color[k] - 0.5) / reference::kShC0);
     }
-    for (int k = 0; k < 4; ++k) cloud.rotations[4 * i + k] = quaternion[k];
-    cloud.opacity_logits[i] = std::log(opacity / (1.0f - opacity));
+    for (int k = 0; k < 4; ++k) cloud.rotations[i * 4 + k] = static_cast<float>(s.rotation[k]);
+    cloud.opacity_logits[i] = static_cast<float>(std::log(s.opacity / (1.0 - s.opacity)));
+}
+
+glm::dvec3 at_pixel(const Camera& camera, double u, double v, double z) {
+    return {(u + 0.5 - camera.cx) * z / camera.fx, (v + 0.5 - camera.cy) * z / camera.fy, z};
 }
 
 GaussianCloud random_scene(uint32_t seed, size_t n, int sh_degree, float z_near, float z_far, float scale_min,

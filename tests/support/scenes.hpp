@@ -3,6 +3,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <glm/glm.hpp>
+
 #include "vksplat/camera.hpp"
 #include "vksplat/scene.hpp"
 
@@ -11,10 +13,21 @@ namespace vksplat::test {
 // A camera at the origin looking down +z (identity world->camera), principal point centred.
 Camera forward_camera(int width, int height, double focal);
 
-// Appends one Gaussian. scale is the standard deviation (not its log), opacity in (0, 1),
-// rgb the colour it should show (written as the DC term); higher SH bands are left zero.
-void add_gaussian(GaussianCloud& cloud, const float position[3], const float scale[3], const float quaternion[4],
-                  float opacity, const float rgb[3]);
+// One Gaussian in activated terms, so a test states what it renders rather than logits and SH.
+struct Splat {
+    glm::dvec3 position{0.0};
+    glm::dvec3 scale{0.1};                    // standard deviations
+    glm::dvec4 rotation{1.0, 0.0, 0.0, 0.0};  // quaternion w, x, y, z
+    double opacity = 0.5;
+    glm::dvec3 color{1.0, 0.5, 0.25};         // the colour it renders as (the DC term)
+};
+
+// Appends a Gaussian to a cloud of any SH degree; higher bands are zero.
+void add_splat(GaussianCloud& cloud, const Splat& splat);
+
+// The view-space position at depth z whose splat centre lands on pixel coordinates (u, v); for
+// forward_camera it is also the world position.
+glm::dvec3 at_pixel(const Camera& camera, double u, double v, double z);
 
 // n Gaussians in front of forward_camera: positions in a box at depth [z_near, z_far],
 // random anisotropic scales within [scale_min, scale_max], random rotations and opacities,
