@@ -45,6 +45,18 @@ mkdir -p "$work/photos" && cp "$work/render/top.png" "$work/photos/top.png"
 expect render-metrics 0 "mean PSNR" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/cameras.json" \
   --out "$work/scored" --images "$work/photos" --background 1,1,1
 
+# Prune: by ratio (saving the view totals), the refusal to overwrite, and a PSNR budget re-scored
+# from the saved totals against the photo.
+expect prune 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method blend --ratio 0.5 --background 1,1,1 --save-totals "$work/totals.npy" -o "$work/half.ply"
+expect prune-refuses-overwrite 2 "half.ply: already exists" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method blend --ratio 0.5 -o "$work/half.ply"
+expect prune-budget 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method volume-blend --load-scores "$work/totals.npy" --max-psnr-drop 1 --images "$work/photos" \
+  --background 1,1,1 -o "$work/budget.ply"
+expect prune-one-selector any-failure "--ratio excludes --keep" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method blend --ratio 0.2 --keep 3 -o "$work/x.ply"
+
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"

@@ -24,5 +24,6 @@ void register_devices(CLI::App& app, Action& action);
 void register_info(CLI::App& app, Action& action);
 void register_render(CLI::App& app, Action& action);
 void register_demo(CLI::App& app, Action& action);
+void register_prune(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     register_info(app, action);
     register_render(app, action);
     register_demo(app, action);
+    register_prune(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

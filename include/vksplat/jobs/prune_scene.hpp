@@ -1,0 +1,89 @@
+#pragma once
+// Prunes a scene: scores every Gaussian over the training views, keeps what a selector asks for
+// (on top of the lossless pass, see prune/selection.hpp), measures the quality on the test views
+// before and after, and writes the smaller scene. What `vksplat prune` does.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <variant>
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/io/write_mode.hpp"
+#include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/quality.hpp"
+#include "vksplat/prune/quality_budget.hpp"
+#include "vksplat/prune/scores.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::jobs {
+
+// How much to keep; see prune/selection.hpp for the exact rules of each.
+struct DropAtOrBelow {
+    float threshold = 0;
+};
+struct DropRatio {
+    double ratio = 0;
+};
+struct KeepCount {
+    size_t count = 0;
+};
+using PruneSelector = std::variant<DropAtOrBelow, DropRatio, KeepCount, prune::QualityBudget>;
+
+struct PruneOptions {
+    prune::ScoreMethod method = prune::ScoreMethod::blend;
+    PruneSelector selector = prune::QualityBudget{};
+    std::vector<size_t> test_views;   // empty: default_test_views
+    std::vector<size_t> train_views;  // empty: default_train_views
+    std::optional<std::filesystem::path> images_dir;  // photos: quality is measured against them
+    RenderSettings settings;          // background (also composited under the photos' alpha)
+    // Write SH up to this degree (capped at the scene's). A quality budget then measures its drop
+    // from the unpruned scene at this degree.
+    std::optional<int> sh_degree;
+    uint64_t seed = 0;                // for the random method
+    // Scores of `method` (float32 [N]) and the view totals (float32 [N, 5]; only where there are
+    // any: rendered, or loaded from a totals file); see prune/score_files.hpp.
+    std::optional<std::filesystem::path> save_scores, save_totals;
+    // Either kind of file instead of rendering the training views. A scores file is taken as the
+    // scores of `method` and carries no pixel counts, so the lossless pass is then skipped.
+    std::optional<std::filesystem::path> load_scores;
+    std::filesystem::path out;        // the pruned scene (.ply)
+    io::WriteMode mode = io::WriteMode::refuse_existing;
+};
+
+struct PruneResult {
+    SanitizeReport sanitize;          // what sanitising the input changed (it is pruned sanitised)
+    size_t count_before = 0, count_after = 0;
+    size_t lossless_dropped = 0;      // by the lossless pass, included in what was dropped
+    bool lossless_applied = false;    // false when scores were loaded without pixel counts
+    size_t bytes_before = 0, bytes_after = 0;  // GaussianCloud::ply_bytes
+    int sh_degree_before = 0, sh_degree_after = 0;
+    std::vector<size_t> train_views, test_views;
+    double scoring_seconds = 0;       // rendering the training views with statistics (0 if loaded)
+    bool against_photos = false;
+    // On the test views. Before: the input against the photos (only with photos). After: the pruned
+    // scene against the photos, else against the renders of the input.
+    std::optional<prune::Quality> before;
+    prune::Quality after;
+    std::optional<prune::BudgetResult> budget;  // with a QualityBudget selector: every probe
+};
+
+struct PruneProgress {
+    prune::Progress scoring;                                  // training views rendered
+    std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
+};
+
+// INRIA's convention: the first 13 cameras are the test views when there are more than 13, else
+// every camera is (and there is no held-out set).
+std::vector<size_t> default_test_views(size_t camera_count);
+// Every camera that is not a test view; every camera when that leaves none.
+std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views);
+
+// Prunes `cloud`, seen from `cameras`, and writes the result to options.out. Refuses, before any
+// work, outputs that exist (unless options.mode says overwrite) and options it cannot honour.
+PruneResult prune_scene(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                        const PruneOptions& options, const PruneProgress& progress = {});
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,59 @@
+#pragma once
+// The smallest model that stays within a quality budget: a bisection on the number of Gaussians
+// kept (best first, as a Ranking orders them), each probe rendering the test views.
+//
+// The drop a probe is judged by:
+//   - against photos: the unpruned scene's mean PSNR minus the probe's (both over the test views);
+//   - against renders of the unpruned scene: there the unpruned scene scores +infinity, so the drop
+//     is estimated instead. If the unpruned scene's own error against its (absent) photos has MSE
+//     m0 = 10^(-P/10), P = assumed_psnr, and pruning adds an error of MSE d uncorrelated with it,
+//     the photos would show a drop of 10 log10(1 + d / m0) dB. That is taken per view and averaged.
+//     With P = 30 dB a 0.1 dB budget asks for about 46 dB against the unpruned render.
+// The bisection assumes that keeping more never raises the drop; it finds a count K whose probe met
+// the budget and, unless K is 0, whose neighbour K - 1 was probed and missed it.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "vksplat/prune/quality.hpp"
+#include "vksplat/prune/selection.hpp"
+
+namespace vksplat::prune {
+
+struct QualityBudget {
+    double max_psnr_drop = 0.1;      // dB
+    // Also try SH degrees below the scene's at the count found, and keep the lowest that still
+    // meets the budget (trying downwards, stopping at the first that misses).
+    bool allow_sh_reduction = false;
+    double assumed_psnr = 30.0;      // dB, used only without photos (see above)
+};
+
+struct BudgetProbe {
+    size_t kept = 0;
+    int sh_degree = 0;
+    double psnr = 0;      // mean over the test views against the targets
+    double drop = 0;      // dB, as defined above
+    double seconds = 0;   // wall time of the probe: subset, upload, renders, metrics
+    bool meets = false;
+};
+
+struct BudgetResult {
+    KeepMask keep;
+    size_t kept = 0;
+    int sh_degree = 0;
+    double baseline_psnr = 0;  // `cloud`'s mean PSNR against the photos; 0 without photos
+    double psnr = 0, drop = 0; // of the model chosen
+    // False when even every candidate (all the lossless pass left) misses the budget; the result
+    // is then that model.
+    bool met = false;
+    std::vector<BudgetProbe> probes;
+};
+
+// `cloud` is the unpruned scene, `ranking` orders its candidates (see selection.hpp). Probes are
+// made of cloud.subset(ranking.keep_best(K)) at the cloud's SH degree (and lower ones, when
+// allowed); `on_probe` hears of each as it finishes. Throws InputError for a negative or NaN budget.
+BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
+                                const TestViews& views, const QualityBudget& budget, const RenderSettings& settings,
+                                const std::function<void(const BudgetProbe&)>& on_probe = {});
+
+}  // namespace vksplat::prune

@@ -1,0 +1,194 @@
+// The prune job: sanitise, score (or load scores), select, measure on the test views, write.
+#include "vksplat/jobs/prune_scene.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "vksplat/error.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/io/ply.hpp"
+#include "vksplat/prune/score_files.hpp"
+#include "vksplat/prune/selection.hpp"
+
+namespace vksplat::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+
+// INRIA's trainer holds out the first 13 cameras of its test set.
+constexpr size_t kInriaTestViews = 13;
+
+// A file the job will write: checked before the work, so that minutes of rendering are not lost
+// to a refusal at the end (the writers check again).
+void check_writable(const fs::path& path, io::WriteMode mode) {
+    if (mode == io::WriteMode::refuse_existing && fs::exists(path))
+        throw InputError(path.string(), "already exists; not overwritten (ask for overwrite to replace it)");
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+    if (!fs::is_directory(folder))
+        throw InputError(path.string(), "cannot be written: folder " + folder.string() + " does not exist");
+}
+
+// Refusals that need no rendering, made before any (the selectors and writers check again).
+void check_options(const PruneOptions& options) {
+    if (options.out.empty()) throw InputError("prune", "no output file given");
+    check_writable(options.out, options.mode);
+    for (const auto& path : {options.save_scores, options.save_totals})
+        if (path) check_writable(*path, options.mode);
+    if (options.sh_degree && (*options.sh_degree < 0 || *options.sh_degree > 3))
+        throw InputError("--sh-degree " + std::to_string(*options.sh_degree), "must lie in 0..3");
+    if (const auto* ratio = std::get_if<DropRatio>(&options.selector); ratio && !(ratio->ratio >= 0 && ratio->ratio <= 1))
+        throw InputError("--ratio " + std::to_string(ratio->ratio), "must lie in [0, 1] (the fraction to drop)");
+    if (const auto* threshold = std::get_if<DropAtOrBelow>(&options.selector); threshold && std::isnan(threshold->threshold))
+        throw InputError("--threshold", "must be a number");
+    if (const auto* budget = std::get_if<prune::QualityBudget>(&options.selector); budget && !(budget->max_psnr_drop >= 0))
+        throw InputError("--max-psnr-drop " + std::to_string(budget->max_psnr_drop), "must be 0 or more (dB)");
+}
+
+void check_views(const std::vector<size_t>& views, size_t camera_count) {
+    for (size_t view : views)
+        if (view >= camera_count)
+            throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
+}
+
+// The scores, the Gaussians still in play after the lossless pass, and the totals behind both
+// (absent when a scores file was loaded: it carries no pixel counts, so no lossless pass).
+struct Scored {
+    std::vector<float> scores;
+    prune::KeepMask candidates;
+    std::optional<prune::ViewTotals> totals;
+};
+
+Scored score_from_file(const GaussianCloud& cloud, const PruneOptions& options) {
+    prune::ScoreFile file = prune::load_score_file(*options.load_scores);
+    if (file.size() != cloud.size())
+        throw InputError(options.load_scores->string(), "holds " + std::to_string(file.size()) +
+                                                            " Gaussians' scores, the scene has " +
+                                                            std::to_string(cloud.size()) + " (after sanitising)");
+    if (file.scores) return {std::move(*file.scores), prune::keep_all(cloud.size()), std::nullopt};
+    return {prune::score(cloud, *file.totals, options.method, options.seed), prune::lossless_mask(*file.totals),
+            std::move(file.totals)};
+}
+
+Scored score_from_views(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                        const PruneOptions& options, const std::vector<size_t>& train, const prune::Progress& progress) {
+    // Rendered even for opacity and random: the lossless pass needs the pixel counts.
+    prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, options.settings, progress);
+    return {prune::score(cloud, totals, options.method, options.seed), prune::lossless_mask(totals), std::move(totals)};
+}
+
+void save_scored(const Scored& scored, const PruneOptions& options) {
+    if (options.save_scores) prune::save_scores(scored.scores, *options.save_scores, options.mode);
+    if (!options.save_totals) return;
+    if (!scored.totals)
+        throw InputError(options.load_scores->string(), "holds scores, not view totals: there are no totals to save");
+    prune::save_totals(*scored.totals, *options.save_totals, options.mode);
+}
+
+prune::TestViews photo_targets(const std::vector<Camera>& cameras, const fs::path& images_dir,
+                               const RenderSettings& settings) {
+    prune::TestViews views;
+    views.cameras = cameras;
+    views.photos = true;
+    for (const Camera& camera : cameras) {
+        const fs::path path = io::find_image(images_dir, camera.name);
+        io::ImageRGB photo = io::read_image_rgb(path, settings.background);
+        if (photo.width != camera.width || photo.height != camera.height)
+            throw InputError(path.string(), "photo is " + std::to_string(photo.width) + "x" +
+                                                std::to_string(photo.height) + " but camera '" + camera.name +
+                                                "' renders " + std::to_string(camera.width) + "x" +
+                                                std::to_string(camera.height));
+        views.targets.push_back(std::move(photo.rgb));
+    }
+    return views;
+}
+
+std::vector<Camera> pick(const std::vector<Camera>& cameras, const std::vector<size_t>& views) {
+    std::vector<Camera> picked;
+    for (size_t v : views) picked.push_back(cameras[v]);
+    return picked;
+}
+
+// The keep mask the selector asks for; a quality budget also leaves its probes in `result`.
+prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud, const Scored& scored,
+                       const prune::TestViews& targets, const PruneOptions& options, const PruneProgress& progress) {
+    if (const auto* threshold = std::get_if<DropAtOrBelow>(&options.selector))
+        return prune::select_threshold(scored.scores, threshold->threshold, scored.candidates);
+    if (const auto* ratio = std::get_if<DropRatio>(&options.selector))
+        return prune::select_ratio(scored.scores, ratio->ratio, scored.candidates);
+    if (const auto* count = std::get_if<KeepCount>(&options.selector))
+        return prune::select_count(scored.scores, count->count, scored.candidates);
+    result.budget = prune::fit_quality_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates), targets,
+                                              std::get<prune::QualityBudget>(options.selector), options.settings,
+                                              progress.probe);
+    return result.budget->keep;
+}
+
+}  // namespace
+
+std::vector<size_t> default_test_views(size_t camera_count) {
+    std::vector<size_t> views(camera_count > kInriaTestViews ? kInriaTestViews : camera_count);
+    for (size_t i = 0; i < views.size(); ++i) views[i] = i;
+    return views;
+}
+
+std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views) {
+    std::vector<size_t> views;
+    for (size_t i = 0; i < camera_count; ++i)
+        if (std::find(test_views.begin(), test_views.end(), i) == test_views.end()) views.push_back(i);
+    if (views.empty())
+        for (size_t i = 0; i < camera_count; ++i) views.push_back(i);
+    return views;
+}
+
+PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const std::vector<Camera>& cameras,
+                        const PruneOptions& options, const PruneProgress& progress) {
+    check_options(options);
+    PruneResult result;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.train_views =
+        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
+    check_views(result.test_views, cameras.size());
+    check_views(result.train_views, cameras.size());
+
+    // Sanitised once here, so that scores, masks and the output all index the same Gaussians.
+    GaussianCloud cloud = input;
+    result.sanitize = sanitize(cloud);
+    result.count_before = cloud.size();
+    result.bytes_before = cloud.ply_bytes();
+    result.sh_degree_before = cloud.sh_degree;
+
+    // Photos are read before the long part, so that a missing one is reported at once.
+    const std::vector<Camera> test_cameras = pick(cameras, result.test_views);
+    result.against_photos = options.images_dir.has_value();
+    const prune::TestViews targets = result.against_photos
+                                         ? photo_targets(test_cameras, *options.images_dir, options.settings)
+                                         : prune::render_targets(renderer, cloud, test_cameras, options.settings);
+    if (result.against_photos) result.before = prune::measure_quality(renderer, cloud, targets, options.settings, true);
+
+    const auto start = std::chrono::steady_clock::now();
+    const Scored scored = options.load_scores
+                              ? score_from_file(cloud, options)
+                              : score_from_views(renderer, cloud, cameras, options, result.train_views, progress.scoring);
+    if (!options.load_scores)
+        result.scoring_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    save_scored(scored, options);
+    result.lossless_applied = scored.totals.has_value();
+    result.lossless_dropped = cloud.size() - prune::count_kept(scored.candidates);
+
+    // From here on the scene is at the degree asked for: what every selector cuts down.
+    if (options.sh_degree && *options.sh_degree < cloud.sh_degree) cloud = cloud.with_sh_degree(*options.sh_degree);
+    GaussianCloud pruned = cloud.subset(select(result, renderer, cloud, scored, targets, options, progress));
+    if (result.budget && result.budget->sh_degree < pruned.sh_degree)
+        pruned = pruned.with_sh_degree(result.budget->sh_degree);
+    result.sh_degree_after = pruned.sh_degree;
+    result.count_after = pruned.size();
+    result.bytes_after = pruned.ply_bytes();
+    result.after = prune::measure_quality(renderer, pruned, targets, options.settings, true);
+    io::write_ply(pruned, options.out, options.mode);
+    return result;
+}
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,48 @@
+// Sums the blend pass's per-Gaussian statistics over many views.
+#include "vksplat/prune/accumulate.hpp"
+
+#include <algorithm>
+#include <numbers>
+#include <string>
+
+#include "vksplat/error.hpp"
+#include "vksplat/prune/scores.hpp"
+
+namespace vksplat::prune {
+namespace {
+
+void add_view(ViewTotals& totals, const GaussianStats& stats, const std::vector<float>& opacity) {
+    for (size_t i = 0; i < totals.size(); ++i) {
+        totals.blend[i] += stats.blend_weight[i];
+        totals.blend_max[i] = std::max(totals.blend_max[i], stats.max_weight[i]);
+        totals.pixels[i] += stats.pixels[i];
+        if (!stats.visible[i]) continue;
+        const double radius = stats.radius[i];
+        totals.footprint[i] += double(opacity[i]) * std::numbers::pi * radius * radius;
+        ++totals.views_visible[i];
+    }
+}
+
+}  // namespace
+
+ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                      const std::vector<size_t>& views, const RenderSettings& settings, const Progress& progress) {
+    for (size_t view : views)
+        if (view >= cameras.size())
+            throw InputError("view " + std::to_string(view),
+                             "there are only " + std::to_string(cameras.size()) + " cameras");
+    renderer.set_scene(cloud);
+    RenderSettings with_stats = settings;
+    with_stats.gather_stats = true;
+    const std::vector<float> opacity = opacities(cloud);
+
+    ViewTotals totals(cloud.size());
+    for (size_t done = 0; done < views.size(); ++done) {
+        add_view(totals, renderer.render(cameras[views[done]], with_stats).stats, opacity);
+        ++totals.views;
+        if (progress) progress(done + 1, views.size());
+    }
+    return totals;
+}
+
+}  // namespace vksplat::prune

@@ -1,0 +1,164 @@
+// vksplat prune: scores the Gaussians of a scene over its training views and writes a smaller scene.
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/ply.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+
+namespace vksplat::cli {
+namespace {
+
+struct PruneArgs {
+    GpuOptions gpu;
+    std::string scene, cameras, out, method, images, test_views, train_views;
+    std::string save_scores, save_totals, load_scores;
+    std::optional<float> threshold;
+    std::optional<double> ratio, max_psnr_drop;
+    std::optional<size_t> keep;
+    bool allow_sh_reduction = false;
+    std::vector<float> background{0, 0, 0};
+    std::optional<int> sh_degree;
+    uint64_t seed = 0;
+    bool force = false;
+};
+
+std::optional<std::filesystem::path> optional_path(const std::string& path) {
+    if (path.empty()) return std::nullopt;
+    return path;
+}
+
+jobs::PruneSelector selector(const PruneArgs& args) {
+    if (args.threshold) return jobs::DropAtOrBelow{*args.threshold};
+    if (args.ratio) return jobs::DropRatio{*args.ratio};
+    if (args.keep) return jobs::KeepCount{*args.keep};
+    prune::QualityBudget budget;
+    if (args.max_psnr_drop) budget.max_psnr_drop = *args.max_psnr_drop;
+    budget.allow_sh_reduction = args.allow_sh_reduction;
+    return budget;
+}
+
+void print_probe(const prune::BudgetProbe& probe) {
+    std::printf("probe: keep %zu, SH %d: PSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.kept, probe.sh_degree,
+                probe.psnr, probe.drop, probe.seconds, probe.meets ? "within budget" : "over budget");
+    std::fflush(stdout);  // one line per probe as it happens, also when stdout is a pipe
+}
+
+void print_result(const jobs::PruneResult& result, const std::string& out) {
+    const double kept = result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0;
+    std::printf("Gaussians: %zu -> %zu (%.1f%% kept", result.count_before, result.count_after, kept);
+    if (result.lossless_applied) std::printf("; the lossless pass dropped %zu", result.lossless_dropped);
+    std::printf(")\nsize: %zu -> %zu bytes (%.2f -> %.2f MB)\nSH degree: %d -> %d\n", result.bytes_before,
+                result.bytes_after, double(result.bytes_before) / 1e6, double(result.bytes_after) / 1e6,
+                result.sh_degree_before, result.sh_degree_after);
+    if (result.budget && !result.budget->met)
+        std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",
+                    result.budget->drop);
+    const size_t views = result.test_views.size();
+    if (result.before)
+        std::printf("test views (%zu) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", views,
+                    result.before->mean_psnr, result.after.mean_psnr, result.before->mean_ssim, result.after.mean_ssim);
+    else
+        std::printf("test views (%zu) against the unpruned render: PSNR %.3f dB, SSIM %.4f\n", views,
+                    result.after.mean_psnr, result.after.mean_ssim);
+    std::printf("wrote %s\n", out.c_str());
+}
+
+int run_prune(const PruneArgs& args) {
+    std::vector<std::string> warnings;
+    const GaussianCloud cloud = io::read_ply(args.scene);
+    const auto cameras = io::read_cameras(args.cameras, &warnings);
+    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+    jobs::PruneOptions options;
+    options.method = prune::parse_score_method(args.method);
+    options.selector = selector(args);
+    if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
+    if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
+    options.images_dir = optional_path(args.images);
+    options.settings.background = {args.background[0], args.background[1], args.background[2]};
+    options.sh_degree = args.sh_degree;
+    options.seed = args.seed;
+    options.save_scores = optional_path(args.save_scores);
+    options.save_totals = optional_path(args.save_totals);
+    options.load_scores = optional_path(args.load_scores);
+    options.out = args.out;
+    options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+
+    gpu::Context context(args.gpu.context_options());
+    Renderer renderer(context);
+    std::fprintf(stderr, "pruning %zu Gaussians by %s on %s\n", cloud.size(), args.method.c_str(),
+                 context.info().name.c_str());
+    ProgressLine scoring("scored views");
+    jobs::PruneProgress progress;
+    progress.scoring = [&](size_t done, size_t total) { scoring.update(done, total); };
+    progress.probe = print_probe;
+    const jobs::PruneResult result = jobs::prune_scene(renderer, cloud, cameras, options, progress);
+    if (result.sanitize.changed())
+        std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), result.sanitize.summary().c_str());
+    if (!result.lossless_applied)
+        std::fprintf(stderr, "note: %s holds scores without pixel counts: no lossless pass\n", args.load_scores.c_str());
+    print_result(result, args.out);
+    return 0;
+}
+
+}  // namespace
+
+void register_prune(CLI::App& app, Action& action) {
+    auto* command = app.add_subcommand("prune", "drop the Gaussians a scene's pictures need least");
+    command->footer(
+        "Selection (one of; default --max-psnr-drop 0.1): --threshold drops score <= T, --ratio drops the\n"
+        "lowest fraction R, --keep keeps the best N, --max-psnr-drop finds the smallest model whose mean\n"
+        "PSNR on the test views drops at most D dB. Every method first drops the Gaussians that touch no\n"
+        "pixel of the training views (lossless on those views).\n"
+        "Example:\n  vksplat prune lego/point_cloud.ply --cameras lego/cameras.json --method blend \\\n"
+        "      --ratio 0.5 --images lego/images --background 1,1,1 -o lego_half.ply");
+    auto args = std::make_shared<PruneArgs>();
+    command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
+        ->required()
+        ->check(CLI::ExistingPath);
+    command->add_option("--method", args->method, "importance score")
+        ->required()
+        ->check(CLI::IsMember(prune::score_method_names()));
+    auto* threshold = command->add_option("--threshold", args->threshold, "drop Gaussians whose score is <= T");
+    auto* ratio = command->add_option("--ratio", args->ratio, "drop this fraction of the Gaussians (0..1)")
+                      ->check(CLI::Range(0.0, 1.0));
+    auto* keep = command->add_option("--keep", args->keep, "keep this many Gaussians");
+    auto* budget = command->add_option("--max-psnr-drop", args->max_psnr_drop,
+                                       "smallest model losing at most D dB of mean PSNR on the test views")
+                       ->check(CLI::NonNegativeNumber);
+    threshold->excludes(ratio, keep, budget);
+    ratio->excludes(keep, budget);
+    keep->excludes(budget);
+    command
+        ->add_flag("--allow-sh-reduction", args->allow_sh_reduction,
+                   "with the PSNR budget, also try fewer SH bands at the count found")
+        ->excludes(threshold, ratio, keep);
+    command->add_option("--images", args->images, "photos to measure quality against (else the unpruned render)")
+        ->check(CLI::ExistingDirectory);
+    command->add_option("--test-views", args->test_views,
+                        "held-out views, e.g. 0-12 (default: the first 13 if there are more, else all)");
+    command->add_option("--train-views", args->train_views, "views to score on (default: all but the test views)");
+    command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
+        ->delimiter(',')
+        ->expected(3);
+    command->add_option("--sh-degree", args->sh_degree, "write the scene with at most this SH degree")
+        ->check(CLI::Range(0, 3));
+    command->add_option("--save-scores", args->save_scores, "write the scores as float32 [N] .npy");
+    command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
+    command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
+        ->check(CLI::ExistingFile);
+    command->add_option("--seed", args->seed, "seed of the random method");
+    command->add_option("-o,--out", args->out, "pruned scene (.ply)")->required();
+    command->add_flag("--force", args->force, "overwrite existing output files");
+    add_gpu_options(*command, args->gpu);
+    command->callback([&action, args] { action = [args] { return run_prune(*args); }; });
+}
+
+}  // namespace vksplat::cli
