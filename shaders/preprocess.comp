@@ -16,7 +16,7 @@ layout(local_size_x = 256) in;
 layout(push_constant) uniform Push {
     CameraBuffer camera;
     Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
-    Floats sh;            // [Gaussian][coefficient][rgb]
+    Floats sh;            // [Gaussian][coefficient][rgb], floats or packed halves (cam.sh_half)
     Vec4s means_depth;    // out: pixel position (x, y), view depth, radius in pixels
     Vec4s conic_opacity;  // out: inverse 2D covariance (a, b, c) and opacity
     Vec4s colors;         // out: rgb
@@ -126,7 +126,7 @@ void main() {
         }
 
         const vec3 direction = normalize(p - cam.position.xyz);
-        const vec3 color = max(eval_sh(pc.sh, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
+        const vec3 color = max(eval_sh(pc.sh, cam.sh_half != 0u, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
                                vec3(0.0));
 
         pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);

@@ -19,6 +19,8 @@ struct CameraParams {
     uint sh_degree;        // degree evaluated (the cap and the scene's degree, whichever is lower)
     uint sh_stride;        // SH coefficients stored per Gaussian (scene degree)
     uint entry_capacity;   // tile entries the frame's buffers hold
+    uint sh_half;          // 1: SH stored as packed halves (SceneStorage::half_sh)
+    uint padding[3];
 };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CameraBuffer { CameraParams c; };
 

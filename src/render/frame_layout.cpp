@@ -7,7 +7,7 @@
 namespace vksplat::render {
 
 CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
-                                int scene_sh_degree, uint32_t entry_capacity) {
+                                int scene_sh_degree, bool scene_half_sh, uint32_t entry_capacity) {
     CameraParams p{};
     float* rows[3] = {p.view_row0, p.view_row1, p.view_row2};
     for (int r = 0; r < 3; ++r) {
@@ -43,6 +43,7 @@ CameraParams make_camera_params(const Camera& camera, const RenderSettings& sett
     p.gaussian_count = gaussian_count;
     p.sh_degree = static_cast<uint32_t>(std::clamp(std::min(settings.max_sh_degree, scene_sh_degree), 0, 3));
     p.sh_stride = static_cast<uint32_t>(sh_coefficients_for_degree(scene_sh_degree));
+    p.sh_half = scene_half_sh ? 1u : 0u;
     p.entry_capacity = entry_capacity;
     return p;
 }

@@ -21,8 +21,10 @@ struct alignas(16) CameraParams {
     uint32_t sh_degree;
     uint32_t sh_stride;
     uint32_t entry_capacity;
+    uint32_t sh_half;
+    uint32_t padding[3];
 };
-static_assert(sizeof(CameraParams) == 144, "must match CameraParams in frame.glsl (std430)");
+static_assert(sizeof(CameraParams) == 160, "must match CameraParams in frame.glsl (std430)");
 
 enum Counter : uint32_t {
     kCounterGaussians = 0,
@@ -36,6 +38,6 @@ enum Counter : uint32_t {
 
 
 CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
-                                int scene_sh_degree, uint32_t entry_capacity);
+                                int scene_sh_degree, bool scene_half_sh, uint32_t entry_capacity);
 
 }  // namespace vksplat::render

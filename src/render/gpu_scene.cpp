@@ -1,6 +1,10 @@
 #include "render/gpu_scene.hpp"
 
+#include <glm/gtc/packing.hpp>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -9,7 +13,22 @@
 
 namespace vksplat::render {
 
-GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& cloud) {
+namespace {
+
+// Halves packed two per uint, low half first (what unpackHalf2x16 reads); an odd count is padded.
+// Values beyond the half range are clamped to it rather than becoming infinities, which would
+// turn into NaN colours.
+std::vector<uint32_t> pack_halves(const std::vector<float>& values) {
+    constexpr float kHalfMax = 65504.0f;
+    std::vector<uint32_t> words((values.size() + 1) / 2, 0);
+    for (size_t i = 0; i < values.size(); ++i)
+        words[i / 2] |= uint32_t(glm::packHalf1x16(std::clamp(values[i], -kHalfMax, kHalfMax))) << (16 * (i % 2));
+    return words;
+}
+
+}  // namespace
+
+GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& cloud, const SceneStorage& storage) {
     cloud.check_consistent();
     if (cloud.size() > std::numeric_limits<uint32_t>::max() / 64)
         throw InputError("scene", "too many Gaussians for one GPU scene (" + std::to_string(cloud.size()) + ")");
@@ -30,7 +49,9 @@ GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& clou
     scene.count = static_cast<uint32_t>(n);
     scene.sh_degree = cloud.sh_degree;
     scene.params = gpu::upload_buffer(context, params, "Gaussian parameters");
-    scene.sh = gpu::upload_buffer(context, cloud.sh, "spherical harmonics");
+    scene.half_sh = storage.half_sh;
+    scene.sh = storage.half_sh ? gpu::upload_buffer(context, pack_halves(cloud.sh), "spherical harmonics (half)")
+                               : gpu::upload_buffer(context, cloud.sh, "spherical harmonics");
     return scene;
 }
 

@@ -31,6 +31,17 @@ struct FrameStats {
     std::vector<StageTiming> stages; // GPU time per stage, in recording order
     double gpu_milliseconds = 0;     // first to last dispatch of the frame
     uint64_t device_bytes = 0;       // device memory the renderer holds
+    uint64_t scene_bytes = 0;        // of which the scene's parameters and SH
+    uint32_t tile_key_bits = 0;      // bits the tile sort sorted by
+};
+
+// How the scene is kept in device memory.
+struct SceneStorage {
+    // SH coefficients as IEEE halves (round to nearest): 96 instead of 192 bytes per Gaussian at
+    // degree 3, the largest part of a scene. A half keeps 11 significant bits, so a colour moves
+    // by about 1e-4 of its value (well under an 8-bit step); off by default so that renders stay
+    // within float rounding of the reference rasterizer.
+    bool half_sh = false;
 };
 
 class Renderer {
@@ -41,7 +52,7 @@ public:
     Renderer& operator=(const Renderer&) = delete;
 
     // Sanitises a copy of the cloud (see sanitize()) and uploads it; returns what was fixed.
-    SanitizeReport set_scene(const GaussianCloud& cloud);
+    SanitizeReport set_scene(const GaussianCloud& cloud, const SceneStorage& storage = {});
     size_t scene_size() const;
 
     // Renders one view. Throws InputError for an invalid camera, GpuError for device failures.
