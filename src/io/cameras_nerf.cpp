@@ -1,12 +1,12 @@
 // NeRF transforms_*.json: a horizontal field of view and camera-to-world matrices with OpenGL axes
 // (x right, y up, z backwards), turned into OpenCV cameras by flipping the camera's y and z axes.
 #include <cmath>
-#include <opencv2/imgcodecs.hpp>
 
 #include "io/camera_json_readers.hpp"
 #include "io/json_fields.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
+#include "vksplat/io/image.hpp"
 
 namespace vksplat::io {
 namespace detail {
@@ -26,10 +26,13 @@ void image_size(const nlohmann::json& document, const nlohmann::json& frame, con
     if (!image.has_extension()) image += ".png";  // the Blender scenes leave it out
     if (!std::filesystem::exists(image))
         throw InputError(at, "no w/h keys and no image at " + image.string() + " to take the size from");
-    const cv::Mat pixels = cv::imread(image.string(), cv::IMREAD_UNCHANGED);
-    if (pixels.empty()) throw InputError(at, "no w/h keys and " + image.string() + " cannot be read as an image");
-    camera.width = pixels.cols;
-    camera.height = pixels.rows;
+    try {
+        const auto [width, height] = read_image_size(image);
+        camera.width = width;
+        camera.height = height;
+    } catch (const InputError& e) {
+        throw InputError(at, std::string("no w/h keys, and the image's size cannot be read: ") + e.what());
+    }
 }
 
 }  // namespace

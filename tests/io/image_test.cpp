@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include <opencv2/imgcodecs.hpp>
+
 #include "io/io_test_helpers.hpp"
 #include "vksplat/io/image.hpp"
 
@@ -118,6 +120,34 @@ TEST(Image, Errors) {
     write_png_rgb(dir / "c.png", 2, 2, rgb.data(), 8);
     expect_input_error([&] { write_png_rgb(dir / "c.png", 2, 2, rgb.data(), 8); }, {"c.png", "already exists"});
     EXPECT_NO_THROW(write_png_rgb(dir / "c.png", 2, 2, rgb.data(), 8, WriteMode::overwrite));
+}
+
+TEST(ImageSize, ReadFromPngAndJpegHeaders) {
+    ScratchDir dir;
+    const std::vector<float> rgb = ramp(13, 7, 3);
+    write_png_rgb(dir / "a.png", 13, 7, rgb.data(), 16);
+    EXPECT_EQ(read_image_size(dir / "a.png"), (std::array<int, 2>{13, 7}));
+    // JPEGs from libjpeg through OpenCV: baseline and progressive (a different frame marker).
+    const cv::Mat pixels(301, 517, CV_8UC3, cv::Scalar(10, 200, 30));
+    ASSERT_TRUE(cv::imwrite((dir / "b.jpg").string(), pixels));
+    EXPECT_EQ(read_image_size(dir / "b.jpg"), (std::array<int, 2>{517, 301}));
+    ASSERT_TRUE(cv::imwrite((dir / "c.jpg").string(), pixels, {cv::IMWRITE_JPEG_PROGRESSIVE, 1}));
+    EXPECT_EQ(read_image_size(dir / "c.jpg"), (std::array<int, 2>{517, 301}));
+}
+
+TEST(ImageSize, Errors) {
+    ScratchDir dir;
+    expect_input_error([&] { read_image_size(dir / "none.png"); }, {"none.png", "cannot open"});
+    write_bytes(dir / "junk.png", "not an image at all, but long enough");
+    expect_input_error([&] { read_image_size(dir / "junk.png"); }, {"junk.png", "not a PNG or JPEG"});
+    write_bytes(dir / "short.png", std::string("\x89PNG\r\n\x1a\n", 8));
+    expect_input_error([&] { read_image_size(dir / "short.png"); }, {"short.png", "not a PNG or JPEG"});
+    // A JPEG cut before its frame header.
+    const cv::Mat pixels(20, 30, CV_8UC3, cv::Scalar(1, 2, 3));
+    std::vector<unsigned char> jpeg;
+    ASSERT_TRUE(cv::imencode(".jpg", pixels, jpeg));
+    write_bytes(dir / "cut.jpg", std::string(jpeg.begin(), jpeg.begin() + 4));
+    expect_input_error([&] { read_image_size(dir / "cut.jpg"); }, {"cut.jpg", "JPEG"});
 }
 
 }  // namespace

@@ -20,6 +20,10 @@ struct ImageRGB {
 // file if it is missing, undecodable or of another pixel type.
 ImageRGB read_image_rgb(const std::filesystem::path& path, const std::array<float, 3>& background);
 
+// Width and height of a PNG or JPEG from its header, without decoding the pixels. Throws
+// InputError naming the file for anything else, a truncated header or an impossible size.
+std::array<int, 2> read_image_size(const std::filesystem::path& path);
+
 // Writes a PNG of 8 or 16 bits per channel. Values are clamped to [0, 1] (NaN becomes 0) and
 // rounded to the nearest level.
 void write_png_rgb(const std::filesystem::path& path, int width, int height, const float* rgb, int bit_depth,
