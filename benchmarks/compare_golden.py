@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares renders saved by render_bench --save (float32 H x W x 3 .npy) with golden PNGs.
+"""Compares renders saved by `vksplat bench --save-npy` (float32 H x W x 3 .npy) with golden PNGs.
 
 Used on GPU hosts, where the library is built without image codecs: numpy and OpenCV's Python
 package read both sides. Prints PSNR of the 8-bit quantised render against the golden image and

@@ -107,14 +107,19 @@ RadixSort::RadixSort(const Context& context) {
 
 RadixSort::~RadixSort() = default;
 
+uint32_t RadixSort::passes_for(uint32_t key_bits) {
+    // Passes of at most 8 bits, an even number of them (so the ping-pong ends where it began).
+    uint32_t passes = (key_bits + kMaxDigitBits - 1) / kMaxDigitBits;
+    return passes + passes % 2;
+}
+
 void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& values,
                        VkDeviceAddress count_address, uint32_t key_bits, Scratch& scratch) const {
     if (key_bits < 1 || key_bits > 32)
         throw std::invalid_argument("RadixSort: key_bits must be 1..32, not " + std::to_string(key_bits));
-    // Passes of at most 8 bits, an even number of them, bits spread as evenly as possible: the
-    // first `extra` passes take base + 1 bits, the rest base bits (possibly 0: a stable copy).
-    uint32_t passes = (key_bits + kMaxDigitBits - 1) / kMaxDigitBits;
-    passes += passes % 2;
+    // Bits spread as evenly as possible over the passes: the first `extra` passes take base + 1
+    // bits, the rest base bits (possibly 0: a stable copy).
+    const uint32_t passes = passes_for(key_bits);
     const uint32_t base = key_bits / passes;
     const uint32_t extra = key_bits % passes;
 

@@ -53,6 +53,9 @@ public:
     void record(CommandStream& stream, const Buffer& keys, const Buffer& values, VkDeviceAddress count_address,
                 uint32_t key_bits, Scratch& scratch) const;
 
+    // Digit passes a sort by key_bits (1..32) bits makes: what its time scales with.
+    static uint32_t passes_for(uint32_t key_bits);
+
     // Keys per block of the histogram and scatter kernels on this device.
     uint32_t block_size() const { return block_size_; }
 

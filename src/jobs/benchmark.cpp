@@ -62,7 +62,9 @@ BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& c
         const FrameStats& last = renderer.last_frame();
         bench.visible = last.visible;
         bench.tile_entries = last.tile_entries;
+        bench.tile_key_bits = last.tile_key_bits;
         bench.device_bytes = last.device_bytes;
+        bench.scene_bytes = last.scene_bytes;
         result.views.push_back(bench);
         result.mean_of_medians_ms += bench.median_ms;
     }

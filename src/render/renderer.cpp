@@ -35,6 +35,10 @@ std::span<const uint32_t> words(const uint32_t (&spirv)[N]) {
 constexpr uint32_t kInitialEntriesPerGaussian = 4;
 constexpr double kEntryGrowth = 1.25;
 
+// Bits of the tile sort's keys. They cover the padding id (= tile count) too, which sorts after
+// every real tile.
+uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -151,9 +155,8 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     stream.barrier();
     stream.mark("tile entries");
 
-    // A stable sort on just the tile bits keeps each tile's entries in depth order. The bits cover
-    // the padding id (= tile count) too, which sorts after every real tile.
-    const uint32_t tile_bits = static_cast<uint32_t>(std::bit_width(tiles_x * tiles_y));
+    // A stable sort on just the tile bits keeps each tile's entries in depth order.
+    const uint32_t tile_bits = tile_key_bits(tiles_x * tiles_y);
     sort.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_bits, *f.sort_scratch);
     stream.barrier();
     stream.mark("tile sort");
@@ -210,7 +213,8 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
     stats.gaussians = scene.count;
     for (;;) {
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
-                                                       frame.entry_capacity);
+                                                       scene.half_sh, frame.entry_capacity);
+        stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
         record_frame(params, read_back, settings.gather_stats);
         uint32_t counters[render::kCounterCount];
         const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
@@ -231,7 +235,8 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
         stats.stages.push_back({t.label, t.milliseconds});
         stats.gpu_milliseconds += t.milliseconds;
     }
-    stats.device_bytes = frame.device_bytes() + scene.params.size() + scene.sh.size();
+    stats.scene_bytes = scene.params.size() + scene.sh.size();
+    stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
 }
 
 Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
@@ -264,10 +269,10 @@ GaussianStats Renderer::Impl::read_stats() const {
     return out;
 }
 
-SanitizeReport Renderer::set_scene(const GaussianCloud& cloud) {
+SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorage& storage) {
     GaussianCloud copy = cloud;
     SanitizeReport report = sanitize(copy);
-    impl_->scene = render::GpuScene::upload(impl_->context, copy);
+    impl_->scene = render::GpuScene::upload(impl_->context, copy, storage);
     impl_->input_count = cloud.size();
     impl_->kept_indices = report.kept_indices;
     return report;

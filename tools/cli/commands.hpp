@@ -20,10 +20,14 @@ struct GpuOptions {
 };
 void add_gpu_options(CLI::App& command, GpuOptions& options);
 
+// Parses argv and runs the action of the chosen subcommand, reporting errors; the exit code.
+int run_cli(CLI::App& app, const Action& action, int argc, char** argv);
+
 void register_devices(CLI::App& app, Action& action);
 void register_info(CLI::App& app, Action& action);
 void register_render(CLI::App& app, Action& action);
 void register_demo(CLI::App& app, Action& action);
 void register_prune(CLI::App& app, Action& action);
+void register_bench(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

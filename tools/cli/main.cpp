@@ -1,19 +1,5 @@
 // vksplat: render and compact 3D Gaussian Splatting scenes with Vulkan compute.
-#include <cstdio>
-#include <exception>
-
 #include "commands.hpp"
-#include "vksplat/error.hpp"
-
-namespace vksplat::cli {
-
-void add_gpu_options(CLI::App& command, GpuOptions& options) {
-    command.add_option("--device", options.device,
-                       "GPU to use: index or part of its name (default: first discrete GPU, else any)");
-    command.add_flag("--validation", options.validation, "enable Vulkan validation layers (slow; for debugging)");
-}
-
-}  // namespace vksplat::cli
 
 int main(int argc, char** argv) {
     using namespace vksplat::cli;
@@ -26,21 +12,6 @@ int main(int argc, char** argv) {
     register_render(app, action);
     register_demo(app, action);
     register_prune(app, action);
-    try {
-        app.parse(argc, argv);
-    } catch (const CLI::ParseError& e) {
-        return app.exit(e);
-    }
-    try {
-        return action();
-    } catch (const vksplat::InputError& e) {
-        std::fprintf(stderr, "vksplat: error: %s\n", e.what());
-        return 2;
-    } catch (const vksplat::GpuError& e) {
-        std::fprintf(stderr, "vksplat: GPU error: %s\n", e.what());
-        return 3;
-    } catch (const std::exception& e) {
-        std::fprintf(stderr, "vksplat: error: %s\n", e.what());
-        return 1;
-    }
+    register_bench(app, action);
+    return run_cli(app, action, argc, argv);
 }

@@ -1,0 +1,90 @@
+#include <algorithm>
+#include <numeric>
+#include <random>
+#include <vector>
+
+#include "gpu/buffer.hpp"
+#include "gpu/command_stream.hpp"
+#include "gpu/radix_sort.hpp"
+#include "gpu/transfer.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/jobs/benchmark.hpp"
+#include "vksplat/jobs/device_floor.hpp"
+
+namespace vksplat::jobs {
+
+namespace {
+
+// Median of `repetitions` submissions of what `record` records, in ms of GPU time.
+template <class Record>
+double median_gpu_ms(const gpu::Context& context, int repetitions, Record record) {
+    gpu::CommandStream stream(context, 4);
+    std::vector<double> times;
+    for (int i = 0; i < repetitions + 1; ++i) {  // the first run warms caches and clocks up
+        stream.begin();
+        record(stream);
+        stream.mark("timed");
+        stream.submit_and_wait();
+        const auto stages = stream.stage_times();
+        if (stages.empty()) throw GpuError("measuring device rates: the queue has no timestamp queries");
+        if (i > 0) times.push_back(stages.back().milliseconds);
+    }
+    return median(times);
+}
+
+}  // namespace
+
+DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions& options) {
+    if (options.repetitions < 1 || options.copy_bytes < 4 || options.sort_pairs < 1)
+        throw InputError("device rates", "repetitions, copy size and sort size must be positive");
+    DeviceRates rates;
+    rates.copy_bytes = options.copy_bytes & ~uint64_t(3);
+    rates.sort_pairs = options.sort_pairs;
+    {
+        gpu::Buffer source(context, rates.copy_bytes, gpu::MemoryKind::device, "bandwidth source");
+        gpu::Buffer target(context, rates.copy_bytes, gpu::MemoryKind::device, "bandwidth target");
+        const double ms = median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
+            stream.copy(source, target, rates.copy_bytes);
+        });
+        rates.copy_bytes_per_ms = 2.0 * double(rates.copy_bytes) / ms;
+    }
+    {
+        const uint32_t n = rates.sort_pairs;
+        std::mt19937 random(7);
+        std::vector<uint32_t> keys(n), values(n);
+        for (auto& k : keys) k = random();
+        std::iota(values.begin(), values.end(), 0u);
+        const gpu::Buffer original = gpu::upload_buffer(context, keys, "sort keys (original)");
+        gpu::Buffer key_buffer(context, original.size(), gpu::MemoryKind::device, "sort keys");
+        const gpu::Buffer value_buffer = gpu::upload_buffer(context, values, "sort values");
+        const gpu::Buffer count = gpu::upload_buffer(context, std::vector<uint32_t>{n}, "sort count");
+        gpu::RadixSort sort(context);
+        gpu::RadixSort::Scratch scratch(context, n);
+        // Each run sorts the same random keys: restoring them is timed separately and removed.
+        const double restore_ms = median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
+            stream.copy(original, key_buffer, original.size());
+        });
+        const double ms = median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
+            stream.copy(original, key_buffer, original.size());
+            stream.barrier();
+            sort.record(stream, key_buffer, value_buffer, count.address(), 32, scratch);
+        });
+        rates.sort_pairs_per_ms = double(n) / std::max(ms - restore_ms, 1e-6);
+    }
+    return rates;
+}
+
+FrameFloor frame_floor(const FrameWork& work, const DeviceRates& rates) {
+    FrameFloor floor;
+    floor.bytes = work.scene_bytes + uint64_t(work.tile_entries) * 48 + work.pixels * 16;
+    if (rates.copy_bytes_per_ms > 0) floor.memory_ms = double(floor.bytes) / rates.copy_bytes_per_ms;
+    if (rates.sort_pairs_per_ms > 0) {
+        const double full_passes = double(gpu::RadixSort::passes_for(32));
+        const double tile_passes = work.tile_key_bits ? double(gpu::RadixSort::passes_for(work.tile_key_bits)) : 0;
+        floor.sort_ms = (double(work.visible) + double(work.tile_entries) * tile_passes / full_passes) /
+                        rates.sort_pairs_per_ms;
+    }
+    return floor;
+}
+
+}  // namespace vksplat::jobs
