@@ -57,6 +57,16 @@ expect prune-budget 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.
 expect prune-one-selector any-failure "--ratio excludes --keep" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --method blend --ratio 0.2 --keep 3 -o "$work/x.ply"
 
+# Bench: per-stage times and the JSON, a tiled scene, and the refusal to overwrite its output.
+expect bench 0 "mean of per-view medians" -- "$vksplat" bench "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --reps 2 --warmup 1 --json "$work/bench.json"
+grep -q '"tile_entries"' "$work/bench.json" && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: bench.json"; }
+expect bench-tiled 0 "154420 Gaussians" -- "$vksplat" bench "$work/demo/demo.ply" --tiled 2x2 --reps 1 --warmup 0 \
+  --width 64 --height 36 --half-sh
+expect bench-refuses-overwrite 2 "bench.json: already exists" -- "$vksplat" bench "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --reps 1 --warmup 0 --json "$work/bench.json"
+expect bench-bad-grid 2 "expected NxM" -- "$vksplat" bench "$work/demo/demo.ply" --tiled 5by5
+
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"
