@@ -11,17 +11,29 @@
 namespace vksplat::test {
 namespace {
 
-class HalfShTest : public GpuTest {};
+class HalfShTest : public GpuTest {
+protected:
+    // The cloud rendered with float and with half SH storage, and the device memory each held.
+    struct Pair {
+        RenderOutput full, half;
+        uint64_t full_bytes = 0, half_bytes = 0;
+    };
+    Pair render_both(const GaussianCloud& cloud, const Camera& camera) {
+        Pair pair;
+        Renderer full(context()), half(context());
+        full.set_scene(cloud);
+        half.set_scene(cloud, SceneStorage{.half_sh = true});
+        pair.full = full.render(camera);
+        pair.full_bytes = full.last_frame().device_bytes;
+        pair.half = half.render(camera);
+        pair.half_bytes = half.last_frame().device_bytes;
+        return pair;
+    }
+};
 
 TEST_F(HalfShTest, MatchesFloatStorageWithinHalfPrecision) {
-    const GaussianCloud cloud = random_scene(41, 3000, 3);
-    const Camera camera = forward_camera(160, 120, 120.0);
-    Renderer full(context()), half(context());
-    full.set_scene(cloud);
-    half.set_scene(cloud, SceneStorage{.half_sh = true});
-    const RenderOutput a = full.render(camera);
-    const uint64_t full_bytes = full.last_frame().device_bytes;
-    const RenderOutput b = half.render(camera);
+    const Pair pair = render_both(random_scene(41, 3000, 3), forward_camera(160, 120, 120.0));
+    const RenderOutput &a = pair.full, &b = pair.half;
     ASSERT_EQ(a.rgb.size(), b.rgb.size());
     double worst = 0;
     size_t changed = 0;
@@ -34,7 +46,7 @@ TEST_F(HalfShTest, MatchesFloatStorageWithinHalfPrecision) {
     EXPECT_LT(worst, 1.0 / 512) << "more than half an 8-bit step";
     EXPECT_EQ(a.alpha, b.alpha) << "SH only colours; coverage must not move";
     // 48 SH floats per Gaussian at degree 3 become 48 halves.
-    EXPECT_EQ(full_bytes - half.last_frame().device_bytes, 3000u * 48u * 2u);
+    EXPECT_EQ(pair.full_bytes - pair.half_bytes, 3000u * 48u * 2u);
 }
 
 TEST_F(HalfShTest, OutOfRangeCoefficientsAreClampedNotInfinite) {
@@ -48,13 +60,9 @@ TEST_F(HalfShTest, OutOfRangeCoefficientsAreClampedNotInfinite) {
 
 TEST_F(HalfShTest, OddCoefficientCountsAtDegreeZero) {
     // Three halves per Gaussian: every second Gaussian starts in the middle of a word.
-    const GaussianCloud cloud = random_scene(43, 501, 0);
-    const Camera camera = forward_camera(96, 96, 90.0);
-    Renderer full(context()), half(context());
-    full.set_scene(cloud);
-    half.set_scene(cloud, SceneStorage{.half_sh = true});
-    const RenderOutput a = full.render(camera), b = half.render(camera);
-    for (size_t i = 0; i < a.rgb.size(); ++i) ASSERT_NEAR(a.rgb[i], b.rgb[i], 1.0 / 512) << "value " << i;
+    const Pair pair = render_both(random_scene(43, 501, 0), forward_camera(96, 96, 90.0));
+    for (size_t i = 0; i < pair.full.rgb.size(); ++i)
+        ASSERT_NEAR(pair.full.rgb[i], pair.half.rgb[i], 1.0 / 512) << "value " << i;
 }
 
 }  // namespace
