@@ -67,6 +67,19 @@ expect bench-refuses-overwrite 2 "bench.json: already exists" -- "$vksplat" benc
   --cameras "$work/cameras.json" --reps 1 --warmup 0 --json "$work/bench.json"
 expect bench-bad-grid 2 "expected NxM" -- "$vksplat" bench "$work/demo/demo.ply" --tiled 5by5
 
+# Convert: the demo scene through every writable format and back, the refusal to overwrite, --force.
+expect convert-to-splat 0 "wrote 38605 Gaussians (SH degree 0)" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.splat"
+expect convert-to-spz 0 "(ply) to $work/demo.spz (spz)" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.spz"
+expect convert-named-format 0 "(ply)" -- "$vksplat" convert "$work/demo.spz" "$work/from_spz.bin" --format ply
+expect convert-back 0 "wrote 38605 Gaussians (SH degree 3)" -- "$vksplat" convert "$work/from_spz.bin" \
+  "$work/from_spz.ply" --input-format ply
+expect convert-splat-back 0 "from $work/demo.splat (splat)" -- "$vksplat" convert "$work/demo.splat" "$work/from_splat.ply"
+expect info-reads-spz 0 "Gaussians: 38605" -- "$vksplat" info "$work/demo.spz"
+expect convert-refuses-overwrite 2 "demo.spz: already exists" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.spz"
+expect convert-force 0 "wrote 38605" -- "$vksplat" convert "$work/from_splat.ply" "$work/demo.spz" --force
+expect convert-read-only-format 2 "cannot write format 'gsplat-pt'" -- "$vksplat" convert "$work/demo.spz" "$work/x.pt"
+expect convert-unknown-extension 2 "unknown scene file extension '.obj'" -- "$vksplat" convert "$work/demo.spz" "$work/x.obj"
+
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"

@@ -29,5 +29,6 @@ void register_render(CLI::App& app, Action& action);
 void register_demo(CLI::App& app, Action& action);
 void register_prune(CLI::App& app, Action& action);
 void register_bench(CLI::App& app, Action& action);
+void register_convert(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

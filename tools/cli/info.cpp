@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "vksplat/io/ply.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/scene.hpp"
 
 namespace vksplat::cli {
@@ -21,7 +21,7 @@ double quantile(std::vector<float> values, double q) {
 
 int run_info(const std::string& path) {
     std::vector<std::string> notes;
-    GaussianCloud cloud = io::read_ply(path, &notes);
+    GaussianCloud cloud = io::read_scene(path, &notes);
     std::printf("%s\n  Gaussians: %zu\n  SH degree: %d\n  file: %ju bytes\n", path.c_str(), cloud.size(),
                 cloud.sh_degree, uintmax_t(std::filesystem::file_size(path)));
     for (const auto& note : notes) std::printf("  note: %s\n", note.c_str());
@@ -54,7 +54,7 @@ void register_info(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("info", "describe a scene file and what sanitising would fix");
     command->footer("Example:\n  vksplat info point_cloud.ply");
     auto path = std::make_shared<std::string>();
-    command->add_option("scene", *path, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", *path, "scene file (.ply, .splat, .spz, .pt)")->required()->check(CLI::ExistingFile);
     command->callback([&action, path] { action = [path] { return run_info(*path); }; });
 }
 

@@ -13,5 +13,6 @@ int main(int argc, char** argv) {
     register_demo(app, action);
     register_prune(app, action);
     register_bench(app, action);
+    register_convert(app, action);
     return run_cli(app, action, argc, argv);
 }

@@ -1,0 +1,50 @@
+// vksplat convert: rewrites a scene file in another format.
+#include <cstdio>
+#include <memory>
+
+#include "commands.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/jobs/convert_scene.hpp"
+
+namespace vksplat::cli {
+namespace {
+
+struct ConvertArgs {
+    std::string input, output, input_format, output_format;
+    bool force = false;
+};
+
+int run_convert(const ConvertArgs& args) {
+    jobs::ConvertOptions options;
+    options.input_format = args.input_format;
+    options.output_format = args.output_format;
+    options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    const auto result = jobs::convert_scene(args.input, args.output, options);
+    for (const auto& note : result.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+    std::printf("wrote %zu Gaussians (SH degree %d) from %s (%s) to %s (%s)\n", result.gaussians,
+                result.output_sh_degree, args.input.c_str(), result.input_format.c_str(), args.output.c_str(),
+                result.output_format.c_str());
+    return 0;
+}
+
+}  // namespace
+
+void register_convert(CLI::App& app, Action& action) {
+    auto* command = app.add_subcommand("convert", "rewrite a scene file in another format");
+    command->footer(
+        "Formats: ply (INRIA 3DGS), splat (antimatter15), spz (Niantic) are read and written; compressed-ply\n"
+        "(PlayCanvas) and gsplat-pt (gsplat checkpoint) are read only. The extension picks the format\n"
+        "unless --format (output) or --input-format names it.\n"
+        "Example:\n  vksplat convert point_cloud.ply scene.spz\n  vksplat convert ckpt_29999.pt scene.ply --force");
+    auto args = std::make_shared<ConvertArgs>();
+    std::string formats;
+    for (const auto& f : io::scene_formats()) formats += (formats.empty() ? "" : ", ") + f;
+    command->add_option("input", args->input, "scene file to read")->required()->check(CLI::ExistingFile);
+    command->add_option("output", args->output, "scene file to write")->required();
+    command->add_option("-f,--format", args->output_format, "output format (" + formats + ")");
+    command->add_option("--input-format", args->input_format, "input format, if its extension does not say");
+    command->add_flag("--force", args->force, "overwrite the output file if it exists");
+    command->callback([&action, args] { action = [args] { return run_convert(*args); }; });
+}
+
+}  // namespace vksplat::cli
