@@ -30,7 +30,11 @@ CommandStream::CommandStream(const Context& context, uint32_t max_timestamps)
     }
 }
 
+CommandStream::CommandStream(const Context& context, Recording recording)
+    : context_(context), command_buffer_(recording.command_buffer) {}
+
 CommandStream::~CommandStream() {
+    if (!pool_) return;  // recorded into an application's command buffer: nothing of ours to free
     const auto& d = context_.impl();
     if (queries_) d.vk.vkDestroyQueryPool(d.device, queries_, nullptr);
     d.vk.vkDestroyFence(d.device, fence_, nullptr);
@@ -77,6 +81,25 @@ void CommandStream::barrier() {
         command_buffer_, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
         VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
         &memory, 0, nullptr, 0, nullptr);
+}
+
+void CommandStream::barrier_after_everything() {
+    VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    memory.srcAccessMask = VK_ACCESS_MEMORY_WRITE_BIT;
+    memory.dstAccessMask = VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT |
+                           VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_TRANSFER_WRITE_BIT;
+    context_.impl().vk.vkCmdPipelineBarrier(
+        command_buffer_, VK_PIPELINE_STAGE_ALL_COMMANDS_BIT,
+        VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT, 0, 1,
+        &memory, 0, nullptr, 0, nullptr);
+}
+
+void CommandStream::barrier_before_host_read() {
+    VkMemoryBarrier memory{VK_STRUCTURE_TYPE_MEMORY_BARRIER};
+    memory.srcAccessMask = VK_ACCESS_TRANSFER_WRITE_BIT;
+    memory.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
+    context_.impl().vk.vkCmdPipelineBarrier(command_buffer_, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                                            0, 1, &memory, 0, nullptr, 0, nullptr);
 }
 
 void CommandStream::fill(const Buffer& buffer, uint32_t value, VkDeviceSize offset, VkDeviceSize size) {

@@ -1,6 +1,8 @@
 #pragma once
 // CommandStream: records compute work into one command buffer, submits it and waits.
 // It also owns a timestamp query pool, so every recorded stage can be timed on the GPU.
+// Built on an application's command buffer instead, it only records into it (no begin, submit,
+// or timestamps): the application owns that buffer's life and its submission.
 #include <volk.h>
 
 #include <cstdint>
@@ -20,6 +22,11 @@ struct StageTime {
 class CommandStream {
 public:
     explicit CommandStream(const Context& context, uint32_t max_timestamps = 64);
+    // Records into an application's command buffer, which it has begun and will end and submit.
+    struct Recording {
+        VkCommandBuffer command_buffer;
+    };
+    CommandStream(const Context& context, Recording recording);
     ~CommandStream();
     CommandStream(const CommandStream&) = delete;
     CommandStream& operator=(const CommandStream&) = delete;
@@ -42,6 +49,11 @@ public:
     // or transfer access. Passes are ordered by this one coarse barrier: they are few and each
     // touches most of its inputs, so finer barriers would buy nothing measurable.
     void barrier();
+    // Orders everything submitted earlier on the queue (any stage, any write) before the compute and
+    // transfer work recorded next: the first thing recorded into an application's command buffer.
+    void barrier_after_everything();
+    // Makes earlier transfer writes visible to the host (for mapped readback buffers read later).
+    void barrier_before_host_read();
     void fill(const Buffer& buffer, uint32_t value, VkDeviceSize offset = 0, VkDeviceSize size = VK_WHOLE_SIZE);
     // Writes up to 64 KiB of host data into a device buffer from inside the command buffer
     // (vkCmdUpdateBuffer): per-frame parameters need no staging buffer this way.

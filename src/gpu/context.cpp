@@ -323,8 +323,47 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
     }
 }
 
+Context::Context(const AdoptedDevice& adopted) : impl_(std::make_unique<Impl>()) {
+    Impl& d = *impl_;
+    if (!adopted.instance || !adopted.physical_device || !adopted.device || !adopted.queue)
+        throw GpuError("adopting a device needs the instance, physical device, device and queue (one is null)");
+    d.owned = false;
+    if (adopted.get_instance_proc_addr)
+        volkInitializeCustom(adopted.get_instance_proc_addr);
+    else
+        ensure_loader();
+    volkLoadInstanceOnly(adopted.instance);
+    d.instance = adopted.instance;
+    d.physical_device = adopted.physical_device;
+    d.device = adopted.device;
+    d.queue = adopted.queue;
+    d.queue_family = adopted.queue_family;
+
+    const auto devices = physical_devices(d.instance);
+    const auto found = std::find(devices.begin(), devices.end(), d.physical_device);
+    if (found == devices.end()) throw GpuError("the adopted physical device does not belong to the adopted instance");
+    d.info = describe(d.physical_device, static_cast<uint32_t>(found - devices.begin()));
+    if (!d.info.usable) throw GpuError("device '" + d.info.name + "' cannot run vksplat: " + d.info.unusable_reason);
+    uint32_t family_count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical_device, &family_count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(family_count);
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical_device, &family_count, families.data());
+    if (d.queue_family >= family_count || !(families[d.queue_family].queueFlags & VK_QUEUE_COMPUTE_BIT))
+        throw GpuError("adopted queue family " + std::to_string(d.queue_family) + " of '" + d.info.name +
+                       "' has no compute queues");
+    // Timestamps and 64-bit atomics are used only where the application's queue and device have them.
+    VkPhysicalDeviceProperties properties{};
+    vkGetPhysicalDeviceProperties(d.physical_device, &properties);
+    d.info.timestamp_period_ns =
+        families[d.queue_family].timestampValidBits > 0 ? properties.limits.timestampPeriod : 0.0f;
+    d.info.int64_atomics = d.info.int64_atomics && adopted.int64_atomics_enabled;
+    vkGetPhysicalDeviceMemoryProperties(d.physical_device, &d.memory);
+    volkLoadDeviceTable(&d.vk, d.device);
+}
+
 Context::~Context() {
     Impl& d = *impl_;
+    if (!d.owned) return;
     if (d.device) {
         d.vk.vkDeviceWaitIdle(d.device);
         d.vk.vkDestroyDevice(d.device, nullptr);
@@ -339,6 +378,7 @@ VkDevice Context::device() const { return impl_->device; }
 VkQueue Context::queue() const { return impl_->queue; }
 uint32_t Context::queue_family() const { return impl_->queue_family; }
 const DeviceInfo& Context::info() const { return impl_->info; }
+bool Context::owns_device() const { return impl_->owned; }
 
 std::vector<std::string> Context::validation_messages() const {
     std::lock_guard lock(impl_->messages_mutex);

@@ -17,6 +17,7 @@ struct Context::Impl {
     VkDevice device = VK_NULL_HANDLE;
     VkQueue queue = VK_NULL_HANDLE;
     uint32_t queue_family = 0;
+    bool owned = true;  // false: instance and device are the application's (AdoptedDevice)
     DeviceInfo info;
     VkPhysicalDeviceMemoryProperties memory{};
     VolkDeviceTable vk{};

@@ -1,6 +1,7 @@
 #include "render/frame_resources.hpp"
 
 #include <algorithm>
+#include <cstring>
 
 #include "render/frame_layout.hpp"
 
@@ -16,6 +17,9 @@ gpu::Buffer device(const gpu::Context& context, uint64_t bytes, const char* name
 FrameResources::FrameResources(const gpu::Context& context_) : context(&context_) {
     camera = device(context_, sizeof(CameraParams), "camera");
     counters = device(context_, kCounterCount * sizeof(uint32_t), "frame counters");
+    recorded_counters =
+        gpu::Buffer(context_, kCounterCount * sizeof(uint32_t), gpu::MemoryKind::readback, "recorded frame counters");
+    std::memset(recorded_counters.mapped(), 0, kCounterCount * sizeof(uint32_t));
 }
 
 void FrameResources::ensure_gaussians(uint32_t count) {
@@ -78,6 +82,18 @@ void FrameResources::ensure_stats(uint32_t count) {
     stats_capacity = count;
 }
 
+void FrameResources::ensure_packed(uint32_t pixels) {
+    pixels = std::max(pixels, 1u);
+    if (pixels <= packed_capacity) return;
+    packed = device(*context, uint64_t(pixels) * 4, "8-bit image");
+    packed_capacity = pixels;
+}
+
+bool FrameResources::fits(uint32_t gaussians, uint32_t pixels, uint32_t tiles, uint32_t entries) const {
+    return std::max(gaussians, 1u) <= gaussian_capacity && std::max(pixels, 1u) <= pixel_capacity &&
+           tiles <= tile_capacity && std::max(entries, 1u) <= entry_capacity;
+}
+
 VkDeviceSize FrameResources::readback_bytes(uint32_t pixels) {
     return uint64_t(pixels) * 24 + kCounterCount * sizeof(uint32_t);
 }
@@ -87,7 +103,7 @@ uint64_t FrameResources::device_bytes() const {
     for (const gpu::Buffer* b : {&camera, &counters, &means_depth, &conic_opacity, &colors, &rects, &tiles_touched,
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
-                                 &ranges, &stat_weight, &stat_max_weight, &stat_pixels})
+                                 &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

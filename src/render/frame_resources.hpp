@@ -38,11 +38,19 @@ struct FrameResources {
     gpu::Buffer color_alpha, depth, contributors, ranges;
     gpu::Buffer readback;  // host-visible: color_alpha, depth, contributors, then the counters
 
+    // Frames recorded into an application's command buffer (Renderer::record).
+    uint32_t packed_capacity = 0;
+    gpu::Buffer packed;              // 8-bit RGBA words for an 8-bit target (allocated on first use)
+    gpu::Buffer recorded_counters;   // host-visible: the counters of the last recorded frame to finish
+
     explicit FrameResources(const gpu::Context& context);
     void ensure_gaussians(uint32_t count);
     void ensure_entries(uint32_t count);
     void ensure_image(uint32_t pixels, uint32_t tiles);
     void ensure_stats(uint32_t count);
+    void ensure_packed(uint32_t pixels);
+    // Whether the ensure_* calls for these sizes would keep every buffer (reallocate none).
+    bool fits(uint32_t gaussians, uint32_t pixels, uint32_t tiles, uint32_t entries) const;
     uint64_t device_bytes() const;
     static VkDeviceSize readback_bytes(uint32_t pixels);
 };

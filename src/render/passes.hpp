@@ -62,6 +62,12 @@ void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeli
 void record_blend_stats(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                         const BlendStatsPush& push, uint32_t tiles_x, uint32_t tiles_y);
 
+struct PackRgba8Push {
+    Address color_alpha, packed;
+    uint32_t pixels, bgra;
+};
+void record_pack_rgba8(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const PackRgba8Push& push);
+
 // Workgroups for a grid-stride loop over `count` elements, 256 per group, at most 65535 groups.
 uint32_t groups_for(uint32_t count, uint32_t per_group = 256);
 

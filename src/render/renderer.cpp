@@ -3,21 +3,25 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "gpu/command_stream.hpp"
 #include "gpu/compute_pipeline.hpp"
+#include "gpu/context_impl.hpp"
 #include "gpu/prefix_scan.hpp"
 #include "gpu/radix_sort.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/passes.hpp"
+#include "render/target_copy.hpp"
 #include "shaders/blend.spv.h"
 #include "shaders/blend_stats.spv.h"
 #include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
 #include "shaders/gather_tile_counts.spv.h"
 #include "shaders/indirect_args.spv.h"
+#include "shaders/pack_rgba8.spv.h"
 #include "shaders/preprocess.spv.h"
 #include "shaders/tile_ranges.spv.h"
 #include "vksplat/error.hpp"
@@ -49,6 +53,8 @@ struct Renderer::Impl {
     gpu::RadixSort sort;
     gpu::CommandStream stream;
     std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
+    std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
+    bool recorded = false;                               // record() was called: frames may be in flight
     render::GpuScene scene;
     size_t input_count = 0;                // Gaussians in the cloud given to set_scene
     std::vector<uint32_t> kept_indices;     // input index of each uploaded Gaussian, if any were dropped
@@ -73,7 +79,15 @@ struct Renderer::Impl {
 
     VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
 
+    // Everything from the per-frame parameters to the blended image, recorded into `stream`.
+    void record_passes(gpu::CommandStream& stream, const render::CameraParams& params, bool gather_stats);
     void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
+    void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
+                     const RenderTarget& target);
+    const gpu::ComputePipeline& pack_pipeline();
+    // Waits for the frames recorded into the application's command buffers, before a buffer they
+    // use is freed. Nothing to wait for if record() was never called.
+    void wait_for_recorded_frames() const;
     void run(const Camera& camera, const RenderSettings& settings, bool read_back);
     const gpu::ComputePipeline& stats_pipeline();
     GaussianStats read_stats() const;
@@ -90,14 +104,12 @@ const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
     return *blend_stats;
 }
 
-void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats) {
+void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::CameraParams& params, bool gather_stats) {
     using namespace render;
     const uint32_t n = scene.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
-    const uint32_t pixels = params.size[0] * params.size[1];
     auto& f = frame;
 
-    stream.begin();
     stream.update(f.camera, &params, sizeof(params));
     uint32_t initial_counters[kCounterCount] = {};
     initial_counters[kCounterGaussians] = n;
@@ -178,7 +190,14 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
         record_blend(stream, blend, blend_push, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
+}
 
+void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats) {
+    const uint32_t pixels = params.size[0] * params.size[1];
+    const uint32_t n = scene.count;
+    auto& f = frame;
+    stream.begin();
+    record_passes(stream, params, gather_stats);
     if (gather_stats) {
         const uint64_t g = n;
         stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
@@ -193,7 +212,7 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
         stream.copy(f.depth, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
         stream.copy(f.contributors, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
     }
-    stream.copy(f.counters, f.readback, kCounterCount * sizeof(uint32_t), 0, counters_offset);
+    stream.copy(f.counters, f.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
     stream.submit_and_wait();
 }
 
@@ -239,8 +258,77 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
     stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
 }
 
+const gpu::ComputePipeline& Renderer::Impl::pack_pipeline() {
+    if (!pack_rgba8)
+        pack_rgba8 = std::make_unique<gpu::ComputePipeline>(context, words(pack_rgba8_spv), sizeof(render::PackRgba8Push),
+                                                            std::vector<uint32_t>{}, "pack_rgba8");
+    return *pack_rgba8;
+}
+
+void Renderer::Impl::wait_for_recorded_frames() const {
+    if (recorded) gpu::vk(context).vkQueueWaitIdle(context.queue());
+}
+
+void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
+                                 const RenderTarget& target) {
+    if (settings.gather_stats)
+        throw std::invalid_argument("Renderer::record does not gather per-Gaussian statistics; use render()");
+    const uint32_t pixel_bytes = render_target_pixel_bytes(target.format);
+    if (pixel_bytes == 0)
+        throw std::invalid_argument("Renderer::record: VkFormat " + std::to_string(target.format) +
+                                    " is not one of the target formats (render/render_target.hpp)");
+    if ((target.image != VK_NULL_HANDLE) == (target.buffer != VK_NULL_HANDLE))
+        throw std::invalid_argument("Renderer::record: set exactly one of RenderTarget::image and ::buffer");
+    camera.validate();
+    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
+    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const bool packs = pixel_bytes == 4;
+
+    // The last recorded frame that finished says how many tile entries its view needed.
+    uint32_t entries = frame.entry_capacity > 0 ? frame.entry_capacity : std::max(scene.count, 1u) * kInitialEntriesPerGaussian;
+    stats = {};
+    stats.gaussians = scene.count;
+    if (recorded) {
+        uint32_t counters[render::kCounterCount];
+        std::memcpy(counters, frame.recorded_counters.mapped(), sizeof(counters));
+        stats.visible = counters[render::kCounterVisible];
+        stats.tile_entries = counters[render::kCounterEntriesNeeded];
+        if (stats.tile_entries > entries)
+            entries = static_cast<uint32_t>(std::min(std::ceil(stats.tile_entries * kEntryGrowth), double(0x7fffffffu)));
+    }
+    if (!frame.fits(scene.count, pixels, tiles, entries) || (packs && pixels > frame.packed_capacity)) {
+        wait_for_recorded_frames();  // pending frames still use the buffers about to be replaced
+        frame.ensure_gaussians(scene.count);
+        frame.ensure_image(pixels, tiles);
+        frame.ensure_entries(entries);
+        if (packs) frame.ensure_packed(pixels);
+    }
+
+    const auto params =
+        render::make_camera_params(camera, settings, scene.count, scene.sh_degree, scene.half_sh, frame.entry_capacity);
+    stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
+    gpu::CommandStream out(context, gpu::CommandStream::Recording{command_buffer});
+    out.barrier_after_everything();
+    record_passes(out, params, false);
+    const gpu::Buffer* source = &frame.color_alpha;
+    if (packs) {
+        const bool bgra = target.format == VK_FORMAT_B8G8R8A8_UNORM || target.format == VK_FORMAT_B8G8R8A8_SRGB;
+        render::record_pack_rgba8(out, pack_pipeline(),
+                                  {frame.color_alpha.address(), frame.packed.address(), pixels, bgra ? 1u : 0u});
+        out.barrier();
+        source = &frame.packed;
+    }
+    render::record_target_copy(out, *source, target, static_cast<uint32_t>(camera.width),
+                               static_cast<uint32_t>(camera.height));
+    out.copy(frame.counters, frame.recorded_counters, render::kCounterCount * sizeof(uint32_t));
+    out.barrier_before_host_read();
+    recorded = true;
+    stats.scene_bytes = scene.params.size() + scene.sh.size();
+    stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
+}
+
 Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
-Renderer::~Renderer() = default;
+Renderer::~Renderer() { impl_->wait_for_recorded_frames(); }
 
 GaussianStats Renderer::Impl::read_stats() const {
     // Layout of the readback: means_depth (vec4 with the radius, 0 when the reference would cull),
@@ -272,6 +360,7 @@ GaussianStats Renderer::Impl::read_stats() const {
 SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorage& storage) {
     GaussianCloud copy = cloud;
     SanitizeReport report = sanitize(copy);
+    impl_->wait_for_recorded_frames();
     impl_->scene = render::GpuScene::upload(impl_->context, copy, storage);
     impl_->input_count = cloud.size();
     impl_->kept_indices = report.kept_indices;
@@ -304,6 +393,11 @@ RenderOutput Renderer::render(const Camera& camera, const RenderSettings& settin
 
 void Renderer::render_gpu_only(const Camera& camera, const RenderSettings& settings) {
     impl_->run(camera, settings, false);
+}
+
+void Renderer::record(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
+                      const RenderTarget& target) {
+    impl_->record_into(command_buffer, camera, settings, target);
 }
 
 const FrameStats& Renderer::last_frame() const { return impl_->stats; }

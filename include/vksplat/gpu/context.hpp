@@ -36,12 +36,42 @@ struct ContextOptions {
     bool validation = false;
 };
 
+// An application's Vulkan objects, lent to vksplat (see Context(const AdoptedDevice&)). The
+// application keeps ownership: vksplat never destroys them, and they must outlive the Context and
+// everything made from it. What the device must have been created with:
+//   - Vulkan 1.2 or newer (VkApplicationInfo::apiVersion and the device's own version);
+//   - VkPhysicalDeviceVulkan12Features::bufferDeviceAddress (every pass addresses its buffers so);
+//   - optionally shaderInt64 + shaderBufferInt64Atomics, for per-Gaussian statistics only.
+// The physical device must pass the checks list_devices() reports (subgroup ballot and arithmetic).
+struct AdoptedDevice {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical_device = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t queue_family = 0;  // must support compute; command buffers given to vksplat come from it
+    // A queue of queue_family. vksplat submits its own one-off work here (scene upload, and
+    // Renderer::render), and waits on it when its buffers must grow, so the application must not
+    // use this queue from another thread while it calls into vksplat (Vulkan's external
+    // synchronisation rule for queues).
+    VkQueue queue = VK_NULL_HANDLE;
+    // The application's loader entry point, so vksplat calls the same loader (and layers) the
+    // application does. Null: vksplat opens the system loader, libvulkan.so.1.
+    PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
+    // Set if the device was created with shaderInt64 and shaderBufferInt64Atomics.
+    bool int64_atomics_enabled = false;
+};
+
 // Every physical device, with whether vksplat can use it.
 std::vector<DeviceInfo> list_devices();
 
 class Context {
 public:
+    // Creates and owns an instance and a device.
     explicit Context(const ContextOptions& options = {});
+    // Works on the application's device; destroys nothing of it (not even waiting for it to go
+    // idle). vksplat loads its own table of the device's entry points through volk, so the
+    // application's function pointers, or its own volk, are left as they are. Throws GpuError if the
+    // physical device cannot run vksplat or the queue family has no compute.
+    explicit Context(const AdoptedDevice& adopted);
     ~Context();
     Context(const Context&) = delete;
     Context& operator=(const Context&) = delete;
@@ -52,6 +82,8 @@ public:
     VkQueue queue() const;
     uint32_t queue_family() const;
     const DeviceInfo& info() const;
+    // False for an adopted device.
+    bool owns_device() const;
     // Validation messages (errors and warnings) seen so far; empty unless validation is on.
     std::vector<std::string> validation_messages() const;
 

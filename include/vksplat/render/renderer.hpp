@@ -12,6 +12,7 @@
 
 #include "vksplat/camera.hpp"
 #include "vksplat/gpu/context.hpp"
+#include "vksplat/render/render_target.hpp"
 #include "vksplat/render_types.hpp"
 #include "vksplat/scene.hpp"
 
@@ -59,6 +60,14 @@ public:
     RenderOutput render(const Camera& camera, const RenderSettings& settings = {});
     // Renders without reading the image back (for timing); the stats are filled in as usual.
     void render_gpu_only(const Camera& camera, const RenderSettings& settings = {});
+    // Records the render of one view into `command_buffer`, which the application has begun and
+    // will submit, leaving the picture in the application's image or buffer. Submits nothing and
+    // waits for nothing, except the context's queue when buffers must grow. The synchronisation
+    // contract (barriers, layouts, what the application must do) is in render/render_target.hpp.
+    // After it, last_frame() tells the counters of the last recorded frame that finished, with no
+    // stage times. Throws std::invalid_argument for a bad target or gather_stats (render() only).
+    void record(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
+                const RenderTarget& target);
 
     const FrameStats& last_frame() const;
 
