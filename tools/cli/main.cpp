@@ -14,5 +14,6 @@ int main(int argc, char** argv) {
     register_prune(app, action);
     register_bench(app, action);
     register_convert(app, action);
+    register_view(app, action);
     return run_cli(app, action, argc, argv);
 }

@@ -1,0 +1,101 @@
+#!/usr/bin/env bash
+# `vksplat view` on a virtual display (Xvfb) with lavapipe: the window shows the scene, N steps to
+# the next dataset camera, a drag leaves it, Tab switches to fly mode, Escape quits cleanly.
+# Screenshots (ImageMagick's import) are checked for scene pixels where the scene must be and
+# background where it must not. usage: viewer_test.sh VKSPLAT_BINARY WORK_DIR
+# Exits 77 (skipped) where Xvfb, xdotool or ImageMagick is not installed.
+set -u
+vksplat=$1
+work=$2
+for tool in Xvfb xdotool import convert compare; do
+  command -v "$tool" >/dev/null || { echo "skipped: $tool is not installed (tools/bootstrap.sh test installs it)"; exit 77; }
+done
+rm -rf "$work" && mkdir -p "$work"
+failed=0
+fail() { echo "FAILED: $*"; failed=$((failed + 1)); }
+
+"$vksplat" demo --out "$work/demo" --views 1 --width 32 --height 24 >/dev/null 2>&1 || { echo "FAILED: demo"; exit 1; }
+# Two dataset cameras: straight down from above, and from the side (+x) with +z up.
+cat >"$work/cameras.json" <<'JSON'
+[{"id": 0, "img_name": "top", "width": 80, "height": 60, "position": [0, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 70, "fy": 70},
+ {"id": 1, "img_name": "side", "width": 80, "height": 60, "position": [4, 0, 0],
+  "rotation": [[0, 0, -1], [1, 0, 0], [0, -1, 0]], "fx": 70, "fy": 70}]
+JSON
+
+# Xvfb picks a free display itself and writes its number to fd 3.
+Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
+xvfb_pid=$!
+viewer_pid=
+cleanup() {
+  [ -n "$viewer_pid" ] && kill "$viewer_pid" 2>/dev/null
+  kill "$xvfb_pid" 2>/dev/null
+}
+trap cleanup EXIT
+for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+export DISPLAY=:$(cat "$work/display")
+
+"$vksplat" view "$work/demo/demo.ply" --cameras "$work/cameras.json" --size 320x240 >"$work/view.log" 2>&1 &
+viewer_pid=$!
+
+# wait_title PATTERN: waits (up to 120 s on a busy CPU) until the title matches; the viewer sets
+# the title after a frame is on screen, so a match means the frame is there.
+window=
+wait_title() {
+  for _ in $(seq 600); do
+    [ -z "$window" ] && window=$(xdotool search --name "vksplat view" 2>/dev/null | head -n 1)
+    if [ -n "$window" ] && xdotool getwindowname "$window" 2>/dev/null | grep -qE -- "$1"; then return 0; fi
+    kill -0 "$viewer_pid" 2>/dev/null || { cat "$work/view.log"; return 1; }
+    sleep 0.2
+  done
+  return 1
+}
+# mean_of IMAGE WxH+X+Y: mean brightness (0..1) of that part of the image.
+mean_of() { convert "$1" -crop "$2" +repage -colorspace Gray -format "%[fx:mean]" info:; }
+# expect_mean IMAGE REGION OP VALUE WHAT
+expect_mean() {
+  local m
+  m=$(mean_of "$1" "$2")
+  awk -v m="$m" -v v="$4" -v op="$3" 'BEGIN { exit !((op == ">") ? m > v : m < v) }' ||
+    fail "$5: mean $m of $2 in $(basename "$1"), wanted $3 $4"
+}
+
+if wait_title "ms \(.*camera 1/2 \(top\)"; then
+  import -window "$window" "$work/top.png"
+  # The knot and the ground disc fill the middle; the corners are the black background.
+  expect_mean "$work/top.png" 120x120+100+60 ">" 0.15 "scene in the middle (top view)"
+  expect_mean "$work/top.png" 30x30+0+0 "<" 0.02 "background in the corner (top view)"
+  expect_mean "$work/top.png" 30x30+290+210 "<" 0.02 "background in the corner (top view)"
+else
+  fail "no first frame from the top camera; title: $(xdotool getwindowname "$window" 2>/dev/null)"
+fi
+
+xdotool key --window "$window" n
+if wait_title "camera 2/2 \(side\)"; then
+  import -window "$window" "$work/side.png"
+  expect_mean "$work/side.png" 160x60+80+90 ">" 0.15 "scene in the middle (side view)"
+  expect_mean "$work/side.png" 320x30+0+0 "<" 0.05 "background above the scene (side view)"
+  differing=$(compare -metric AE "$work/top.png" "$work/side.png" null: 2>&1)
+  [ "${differing%%.*}" -gt 5000 ] 2>/dev/null || fail "the side view should differ from the top view ($differing pixels do)"
+else
+  fail "N did not step to the next dataset camera"
+fi
+
+# A drag turns the view (leaving the dataset camera), Tab switches to fly mode.
+xdotool mousemove --window "$window" 160 120 mousedown 1 mousemove --window "$window" 220 130 mouseup 1
+wait_title "orbit$" || fail "a drag should leave the dataset camera"
+xdotool key --window "$window" Tab
+wait_title " fly$" || fail "Tab should switch to fly mode"
+import -window "$window" "$work/after_drag.png"
+expect_mean "$work/after_drag.png" 320x240+0+0 ">" 0.03 "scene still in view after the drag"
+
+xdotool key --window "$window" Escape
+status=
+for _ in $(seq 300); do
+  if ! kill -0 "$viewer_pid" 2>/dev/null; then wait "$viewer_pid"; status=$?; break; fi
+  sleep 0.2
+done
+viewer_pid=
+[ "$status" = 0 ] || fail "Escape should close the viewer with exit 0 (got '${status:-still running}')"
+
+[ $failed -eq 0 ] && echo "viewer: all checks passed" || { sed 's/^/    /' "$work/view.log"; exit 1; }

@@ -1,0 +1,63 @@
+// vksplat view: an interactive window on a scene (tools/viewer/), when built with VKSPLAT_VIEWER.
+#include <cstdio>
+#include <memory>
+
+#include "commands.hpp"
+#include "vksplat/error.hpp"
+#ifdef VKSPLAT_HAS_VIEWER
+#include "viewer.hpp"
+#endif
+
+namespace vksplat::cli {
+namespace {
+
+struct ViewArgs {
+    std::string scene, cameras, size = "1024x768";
+    std::vector<double> up;
+    std::vector<float> background{0, 0, 0};
+    bool validation = false;
+};
+
+int run_view(const ViewArgs& args) {
+#ifdef VKSPLAT_HAS_VIEWER
+    viewer::ViewerOptions options;
+    options.scene = args.scene;
+    options.cameras = args.cameras;
+    if (!args.up.empty()) options.up = std::array<double, 3>{args.up[0], args.up[1], args.up[2]};
+    if (std::sscanf(args.size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 1 ||
+        options.height < 1)
+        throw InputError("--size", "'" + args.size + "' is not WIDTHxHEIGHT");
+    options.background = {args.background[0], args.background[1], args.background[2]};
+    options.validation = args.validation;
+    return viewer::run_viewer(options);
+#else
+    (void)args;
+    std::fprintf(stderr, "vksplat: this build has no viewer: GLFW was not found when it was configured "
+                         "(install libglfw3-dev and configure again, or set -DVKSPLAT_VIEWER=ON)\n");
+    return 1;
+#endif
+}
+
+}  // namespace
+
+void register_view(CLI::App& app, Action& action) {
+    auto* command = app.add_subcommand("view", "look at a scene in a window");
+    command->footer(
+        "Mouse: left drag turns (orbit about the focus point, or the view in fly mode), right or shift+left\n"
+        "drag pans, wheel zooms. Keys: Tab or F switches orbit/fly, W A S D Q E fly, N/right and P/left step\n"
+        "through the dataset cameras, +/- zoom, Esc quits. The title shows the frame time.\n"
+        "Example:\n  vksplat view point_cloud.ply --cameras cameras.json");
+    auto args = std::make_shared<ViewArgs>();
+    command->add_option("scene", args->scene, "scene file (.ply, .splat, .spz, .pt)")->required()->check(CLI::ExistingFile);
+    command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
+        ->check(CLI::ExistingPath);
+    command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, else +z)")
+        ->delimiter(',')
+        ->expected(3);
+    command->add_option("--size", args->size, "window size WIDTHxHEIGHT");
+    command->add_option("--background", args->background, "background colour R,G,B in [0,1]")->delimiter(',')->expected(3);
+    command->add_flag("--validation", args->validation, "enable Vulkan validation layers (slow; for debugging)");
+    command->callback([&action, args] { action = [args] { return run_view(*args); }; });
+}
+
+}  // namespace vksplat::cli

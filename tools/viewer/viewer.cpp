@@ -1,0 +1,321 @@
+// The viewer's loop: input -> CameraControls -> Renderer::record into the acquired swapchain
+// image -> present. One frame in flight: the CPU waits for the last frame before recording the
+// next, which Renderer::record asks for anyway (it must be submitted before the next record).
+#include "viewer.hpp"
+
+#include <chrono>
+#include <cstdio>
+#include <memory>
+#include <vector>
+
+#include "glfw_window.hpp"
+#include "swapchain.hpp"
+#include "vksplat/camera_controls.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::viewer {
+namespace {
+
+void check(VkResult result, const char* what) {
+    if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
+}
+
+// The command buffer, fence and acquire semaphore of the one frame in flight.
+struct FrameSync {
+    VkDevice device;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer commands = VK_NULL_HANDLE;
+    VkFence done = VK_NULL_HANDLE;
+    VkSemaphore acquired = VK_NULL_HANDLE;
+
+    FrameSync(VkDevice d, uint32_t family) : device(d) {
+        VkCommandPoolCreateInfo pool_info{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pool_info.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool_info.queueFamilyIndex = family;
+        check(vkCreateCommandPool(device, &pool_info, nullptr, &pool), "vkCreateCommandPool");
+        VkCommandBufferAllocateInfo alloc{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        alloc.commandPool = pool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        check(vkAllocateCommandBuffers(device, &alloc, &commands), "vkAllocateCommandBuffers");
+        VkFenceCreateInfo fence_info{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        fence_info.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+        check(vkCreateFence(device, &fence_info, nullptr, &done), "vkCreateFence");
+        VkSemaphoreCreateInfo semaphore_info{VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO};
+        check(vkCreateSemaphore(device, &semaphore_info, nullptr, &acquired), "vkCreateSemaphore");
+    }
+    ~FrameSync() {
+        vkDestroySemaphore(device, acquired, nullptr);
+        vkDestroyFence(device, done, nullptr);
+        vkDestroyCommandPool(device, pool, nullptr);
+    }
+    FrameSync(const FrameSync&) = delete;
+    FrameSync& operator=(const FrameSync&) = delete;
+};
+
+class Viewer {
+public:
+    Viewer(const ViewerOptions& options, GaussianCloud cloud, std::vector<Camera> cameras)
+        : options_(options),
+          cameras_(std::move(cameras)),
+          window_(options.width, options.height, "vksplat view", options.validation),
+          context_(window_.lend()),
+          renderer_(context_),
+          sync_(window_.device(), window_.queue_family()),
+          controls_(start_controls(cloud)) {
+        gaussians_ = cloud.size();
+        renderer_.set_scene(cloud);
+        settings_.background = options.background;
+        if (!cameras_.empty()) show_dataset_camera(0);
+        glfwSetWindowUserPointer(window_.window(), this);
+        glfwSetKeyCallback(window_.window(), [](GLFWwindow* w, int key, int, int action, int mods) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->on_key(key, action, mods);
+        });
+        glfwSetMouseButtonCallback(window_.window(), [](GLFWwindow* w, int button, int action, int mods) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->on_button(button, action, mods);
+        });
+        glfwSetCursorPosCallback(window_.window(), [](GLFWwindow* w, double x, double y) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->on_cursor(x, y);
+        });
+        glfwSetScrollCallback(window_.window(), [](GLFWwindow* w, double, double dy) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->on_scroll(dy);
+        });
+        // A resized or uncovered window needs a new picture.
+        glfwSetFramebufferSizeCallback(window_.window(), [](GLFWwindow* w, int, int) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->dirty_ = true;
+        });
+        glfwSetWindowRefreshCallback(window_.window(), [](GLFWwindow* w) {
+            static_cast<Viewer*>(glfwGetWindowUserPointer(w))->dirty_ = true;
+        });
+    }
+
+    ~Viewer() { vkDeviceWaitIdle(window_.device()); }
+
+    int run() {
+        auto last = std::chrono::steady_clock::now();
+        while (!glfwWindowShouldClose(window_.window())) {
+            // Redraw only when something changed: a CPU driver has better things to do.
+            if (dirty_ || flying()) glfwPollEvents(); else glfwWaitEvents();
+            const auto now = std::chrono::steady_clock::now();
+            const double seconds = std::chrono::duration<double>(now - last).count();
+            last = now;
+            fly(std::min(seconds, 0.1));
+            int width = 0, height = 0;
+            glfwGetFramebufferSize(window_.window(), &width, &height);
+            if (width == 0 || height == 0 || !dirty_) continue;  // minimised, or nothing new
+            draw(VkExtent2D{uint32_t(width), uint32_t(height)});
+        }
+        return 0;
+    }
+
+private:
+    CameraControls start_controls(const GaussianCloud& cloud) const {
+        const glm::dvec3 up = options_.up ? glm::dvec3((*options_.up)[0], (*options_.up)[1], (*options_.up)[2])
+                                          : CameraControls::up_of(cameras_, {0, 0, 1});
+        return CameraControls::framing(cloud, up);
+    }
+
+    bool flying() const {
+        for (int key : {GLFW_KEY_W, GLFW_KEY_A, GLFW_KEY_S, GLFW_KEY_D, GLFW_KEY_Q, GLFW_KEY_E})
+            if (glfwGetKey(window_.window(), key) == GLFW_PRESS) return true;
+        return false;
+    }
+
+    // W/S forward and back, A/D left and right, E/Q up and down: one focus distance a second.
+    void fly(double seconds) {
+        glm::dvec3 move(0.0);
+        auto held = [&](int key) { return glfwGetKey(window_.window(), key) == GLFW_PRESS ? 1.0 : 0.0; };
+        move.x = held(GLFW_KEY_D) - held(GLFW_KEY_A);
+        move.y = held(GLFW_KEY_E) - held(GLFW_KEY_Q);
+        move.z = held(GLFW_KEY_W) - held(GLFW_KEY_S);
+        if (move == glm::dvec3(0.0)) return;
+        controls_.move(move, seconds);
+        dataset_index_ = -1;
+        dirty_ = true;
+    }
+
+    void show_dataset_camera(int index) {
+        dataset_index_ = (index % int(cameras_.size()) + int(cameras_.size())) % int(cameras_.size());
+        controls_.jump_to(cameras_[size_t(dataset_index_)], controls_.distance());
+        dirty_ = true;
+    }
+
+    void on_key(int key, int action, int) {
+        if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+        switch (key) {
+            case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.window(), GLFW_TRUE); break;
+            case GLFW_KEY_TAB:
+            case GLFW_KEY_F:
+                controls_.set_mode(controls_.mode() == CameraControls::Mode::orbit ? CameraControls::Mode::fly
+                                                                                   : CameraControls::Mode::orbit);
+                break;
+            case GLFW_KEY_N:
+            case GLFW_KEY_RIGHT:
+                if (!cameras_.empty()) show_dataset_camera(dataset_index_ + 1);
+                break;
+            case GLFW_KEY_P:
+            case GLFW_KEY_LEFT:
+                if (!cameras_.empty()) show_dataset_camera(dataset_index_ < 0 ? 0 : dataset_index_ - 1);
+                break;
+            case GLFW_KEY_EQUAL:
+            case GLFW_KEY_KP_ADD: zoom(1); break;
+            case GLFW_KEY_MINUS:
+            case GLFW_KEY_KP_SUBTRACT: zoom(-1); break;
+            default: return;
+        }
+        dirty_ = true;
+    }
+
+    void zoom(double steps) {
+        controls_.zoom(steps);
+        dataset_index_ = -1;
+    }
+
+    void on_button(int button, int action, int mods) {
+        if (action == GLFW_PRESS) {
+            dragging_ = button == GLFW_MOUSE_BUTTON_LEFT && !(mods & GLFW_MOD_SHIFT) ? Drag::rotate : Drag::pan;
+            glfwGetCursorPos(window_.window(), &cursor_x_, &cursor_y_);
+        } else {
+            dragging_ = Drag::none;
+        }
+    }
+
+    void on_cursor(double x, double y) {
+        const double dx = x - cursor_x_, dy = y - cursor_y_;
+        cursor_x_ = x;
+        cursor_y_ = y;
+        if (dragging_ == Drag::none) return;
+        if (dragging_ == Drag::rotate)
+            controls_.rotate(dx, dy);
+        else
+            controls_.pan(dx, dy, int(extent_.height));
+        dataset_index_ = -1;
+        dirty_ = true;
+    }
+
+    void on_scroll(double dy) {
+        zoom(dy);
+        dirty_ = true;
+    }
+
+    void recreate_swapchain(VkExtent2D extent) {
+        vkDeviceWaitIdle(window_.device());
+        auto next = std::make_unique<Swapchain>(window_, extent, swapchain_ ? swapchain_->handle() : VK_NULL_HANDLE);
+        swapchain_ = std::move(next);
+        extent_ = swapchain_->extent();
+        stale_swapchain_ = false;
+    }
+
+    void draw(VkExtent2D framebuffer) {
+        if (!swapchain_ || stale_swapchain_ || framebuffer.width != extent_.width ||
+            framebuffer.height != extent_.height)
+            recreate_swapchain(framebuffer);
+        const VkDevice device = window_.device();
+        check(vkWaitForFences(device, 1, &sync_.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        const auto start = std::chrono::steady_clock::now();
+
+        uint32_t index = 0;
+        VkResult acquired = vkAcquireNextImageKHR(device, swapchain_->handle(), UINT64_MAX, sync_.acquired,
+                                                  VK_NULL_HANDLE, &index);
+        if (acquired == VK_ERROR_OUT_OF_DATE_KHR) {
+            stale_swapchain_ = true;  // rebuilt at the next draw, which stays due (dirty_)
+            return;
+        }
+        if (acquired != VK_SUBOPTIMAL_KHR) check(acquired, "vkAcquireNextImageKHR");
+        check(vkResetFences(device, 1, &sync_.done), "vkResetFences");
+
+        check(vkResetCommandBuffer(sync_.commands, 0), "vkResetCommandBuffer");
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        check(vkBeginCommandBuffer(sync_.commands, &begin), "vkBeginCommandBuffer");
+        const Camera camera = controls_.camera(int(extent_.width), int(extent_.height));
+        renderer_.record(sync_.commands, camera, settings_,
+                         RenderTarget::to_image(swapchain_->images()[index], swapchain_->format(),
+                                                VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR));
+        check(vkEndCommandBuffer(sync_.commands), "vkEndCommandBuffer");
+
+        // The copy into the image (a transfer) waits for the presentation engine to let go of it;
+        // vksplat's own passes need not. See render/render_target.hpp for the barriers this relies on.
+        const VkPipelineStageFlags wait_stage = VK_PIPELINE_STAGE_TRANSFER_BIT;
+        const VkSemaphore drawn = swapchain_->drawn(index);
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.waitSemaphoreCount = 1;
+        submit.pWaitSemaphores = &sync_.acquired;
+        submit.pWaitDstStageMask = &wait_stage;
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &sync_.commands;
+        submit.signalSemaphoreCount = 1;
+        submit.pSignalSemaphores = &drawn;
+        check(vkQueueSubmit(window_.queue(), 1, &submit, sync_.done), "vkQueueSubmit");
+
+        const VkSwapchainKHR handle = swapchain_->handle();
+        VkPresentInfoKHR present{VK_STRUCTURE_TYPE_PRESENT_INFO_KHR};
+        present.waitSemaphoreCount = 1;
+        present.pWaitSemaphores = &drawn;
+        present.swapchainCount = 1;
+        present.pSwapchains = &handle;
+        present.pImageIndices = &index;
+        const VkResult presented = vkQueuePresentKHR(window_.queue(), &present);
+        dirty_ = false;
+        if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
+            stale_swapchain_ = true;
+            dirty_ = true;  // drawn again into the rebuilt swapchain
+        } else {
+            check(presented, "vkQueuePresentKHR");
+        }
+
+        // Frame time: recording, the GPU's work and presentation, as the user waits for them.
+        check(vkWaitForFences(device, 1, &sync_.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        update_title(ms);
+    }
+
+    void update_title(double ms) {
+        char title[256];
+        const std::string where = dataset_index_ >= 0 ? " - camera " + std::to_string(dataset_index_ + 1) + "/" +
+                                                            std::to_string(cameras_.size()) + " (" +
+                                                            cameras_[size_t(dataset_index_)].name + ")"
+                                                      : "";
+        std::snprintf(title, sizeof(title), "vksplat view - %s - %zu Gaussians - %.1f ms (%.0f fps) - %s%s",
+                      options_.scene.c_str(), gaussians_, ms, 1000.0 / ms,
+                      controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly", where.c_str());
+        glfwSetWindowTitle(window_.window(), title);
+    }
+
+    enum class Drag { none, rotate, pan };
+
+    const ViewerOptions& options_;
+    std::vector<Camera> cameras_;
+    GlfwWindow window_;
+    gpu::Context context_;
+    Renderer renderer_;
+    FrameSync sync_;
+    CameraControls controls_;
+    std::unique_ptr<Swapchain> swapchain_;
+    bool stale_swapchain_ = false;  // out of date or suboptimal: rebuild before the next frame
+    VkExtent2D extent_{};
+    RenderSettings settings_;
+    size_t gaussians_ = 0;
+    int dataset_index_ = -1;
+    bool dirty_ = true;
+    Drag dragging_ = Drag::none;
+    double cursor_x_ = 0, cursor_y_ = 0;
+};
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+    std::vector<std::string> notes, warnings;
+    GaussianCloud cloud = io::read_scene(options.scene, &notes);
+    for (const auto& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+    std::vector<Camera> cameras;
+    if (!options.cameras.empty()) cameras = io::read_cameras(options.cameras, &warnings);
+    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    Viewer viewer(options, std::move(cloud), std::move(cameras));
+    return viewer.run();
+}
+
+}  // namespace vksplat::viewer
