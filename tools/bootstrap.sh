@@ -11,10 +11,12 @@ packages=(
   cmake g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers glslang-tools libvulkan-volk-dev
   libglm-dev libeigen3-dev libopencv-dev libnanoflann-dev
-  libgtest-dev libcli11-dev nlohmann-json3-dev zlib1g-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libglfw3-dev
 )
 # The test suite also drives headless Chromium to check that the HTML reports draw.
 [ "$mode" = test ] && packages+=(chromium)
+# ... and opens the viewer on a virtual display, sends it keys and takes screenshots.
+[ "$mode" = test ] && packages+=(xvfb xdotool imagemagick)
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 missing=()

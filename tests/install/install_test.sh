@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Installs vksplat into a scratch prefix, then builds examples/find_package against it twice:
 # with CMake's find_package(vksplat) and with pkg-config, and runs both on a scene made by the
-# installed CLI. usage: install_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
+# installed CLI; and builds and runs examples/embed against it too. usage: install_test.sh BUILD_DIR SOURCE_DIR WORK_DIR
 set -euo pipefail
 build=$1
 source=$2
@@ -23,10 +23,16 @@ cmake -S "$source/examples/find_package" -B "$work/cmake_build" -G Ninja -DCMAKE
 cmake --build "$work/cmake_build" >/dev/null
 "$work/cmake_build/render_scene" "$work/demo/demo.ply" "$work/cmake.png" 64 48
 
+# The embedding example against the installed package, with the application's own Vulkan loader.
+cmake -S "$source/examples/embed" -B "$work/embed_build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$prefix" >/dev/null
+cmake --build "$work/embed_build" >/dev/null
+"$work/embed_build/embed_example"
+
 # pkg-config, linking the system Vulkan loader as well: vksplat's private copy of volk must not
 # clash with the application's Vulkan symbols.
 PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --exists vksplat
 c++ -O1 -o "$work/pkg_config_render" "$source/examples/find_package/main.cpp" \
     $(PKG_CONFIG_PATH="$prefix/lib/pkgconfig" pkg-config --cflags --libs vksplat)
 "$work/pkg_config_render" "$work/demo/demo.ply" "$work/pkg_config.png" 64 48
-echo "install: find_package and pkg-config builds both render"
+echo "install: find_package, pkg-config and embed builds all render"
