@@ -227,11 +227,14 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     GaussianCloud cloud = input;
     result.sanitize = sanitize(cloud);
     // Photos first: a missing one is reported before the long part.
+    const char* const unpruned_stage = "photos and the unpruned scene";
+    if (progress.step) progress.step(unpruned_stage, 0, 2);
     const Targets targets = make_targets(renderer, cloud, test_cameras, options);
     fs::create_directories(options.out_dir / "charts");
     fs::create_directories(options.out_dir / "sheets");
-
+    if (progress.step) progress.step(unpruned_stage, 1, 2);
     result.unpruned = sweep_detail::measure_model(renderer, cloud, targets, options);
+    if (progress.step) progress.step(unpruned_stage, 2, 2);
     result.sh_degrees = measure_sh_degrees(renderer, cloud, targets, options, progress);
 
     const auto scoring_start = std::chrono::steady_clock::now();

@@ -57,6 +57,15 @@ expect prune-budget 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.
 expect prune-one-selector any-failure "--ratio excludes --keep" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --method blend --ratio 0.2 --keep 3 -o "$work/x.ply"
 
+# Sweep: a quick one against the photo, then the refusal to overwrite its results.
+expect sweep 0 "wrote $work/sweep/report.html" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --background 1,1,1 --out "$work/sweep" \
+  --methods blend,random --fractions 0,0.5 --timing-reps 0 --no-scoring-cost
+[ "$(wc -l <"$work/sweep/sweep.csv")" -eq 5 ] && [ -f "$work/sweep/charts/psnr_vs_fraction.svg" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: sweep outputs missing"; }
+expect sweep-refuses-overwrite 2 "sweep.csv: already exists" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
+
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"
