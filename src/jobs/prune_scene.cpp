@@ -7,8 +7,6 @@
 #include <string>
 
 #include "vksplat/error.hpp"
-#include "vksplat/io/cameras.hpp"
-#include "vksplat/io/image.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
@@ -87,24 +85,6 @@ void save_scored(const Scored& scored, const PruneOptions& options) {
     prune::save_totals(*scored.totals, *options.save_totals, options.mode);
 }
 
-prune::TestViews photo_targets(const std::vector<Camera>& cameras, const fs::path& images_dir,
-                               const RenderSettings& settings) {
-    prune::TestViews views;
-    views.cameras = cameras;
-    views.photos = true;
-    for (const Camera& camera : cameras) {
-        const fs::path path = io::find_image(images_dir, camera.name);
-        io::ImageRGB photo = io::read_image_rgb(path, settings.background);
-        if (photo.width != camera.width || photo.height != camera.height)
-            throw InputError(path.string(), "photo is " + std::to_string(photo.width) + "x" +
-                                                std::to_string(photo.height) + " but camera '" + camera.name +
-                                                "' renders " + std::to_string(camera.width) + "x" +
-                                                std::to_string(camera.height));
-        views.targets.push_back(std::move(photo.rgb));
-    }
-    return views;
-}
-
 std::vector<Camera> pick(const std::vector<Camera>& cameras, const std::vector<size_t>& views) {
     std::vector<Camera> picked;
     for (size_t v : views) picked.push_back(cameras[v]);
@@ -164,7 +144,7 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     const std::vector<Camera> test_cameras = pick(cameras, result.test_views);
     result.against_photos = options.images_dir.has_value();
     const prune::TestViews targets = result.against_photos
-                                         ? photo_targets(test_cameras, *options.images_dir, options.settings)
+                                         ? prune::photo_targets(test_cameras, *options.images_dir, options.settings.background)
                                          : prune::render_targets(renderer, cloud, test_cameras, options.settings);
     if (result.against_photos) result.before = prune::measure_quality(renderer, cloud, targets, options.settings, true);
 

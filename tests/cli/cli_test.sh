@@ -79,6 +79,14 @@ expect convert-refuses-overwrite 2 "demo.spz: already exists" -- "$vksplat" conv
 expect convert-force 0 "wrote 38605" -- "$vksplat" convert "$work/from_splat.ply" "$work/demo.spz" --force
 expect convert-read-only-format 2 "cannot write format 'gsplat-pt'" -- "$vksplat" convert "$work/demo.spz" "$work/x.pt"
 expect convert-unknown-extension 2 "unknown scene file extension '.obj'" -- "$vksplat" convert "$work/demo.spz" "$work/x.obj"
+# Sweep: a quick one against the photo, then the refusal to overwrite its results.
+expect sweep 0 "wrote $work/sweep/report.html" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --background 1,1,1 --out "$work/sweep" \
+  --methods blend,random --fractions 0,0.5 --timing-reps 0 --no-scoring-cost
+[ "$(wc -l <"$work/sweep/sweep.csv")" -eq 5 ] && [ -f "$work/sweep/charts/psnr_vs_fraction.svg" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: sweep outputs missing"; }
+expect sweep-refuses-overwrite 2 "sweep.csv: already exists" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
 
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"

@@ -31,5 +31,6 @@ void register_prune(CLI::App& app, Action& action);
 void register_bench(CLI::App& app, Action& action);
 void register_convert(CLI::App& app, Action& action);
 void register_view(CLI::App& app, Action& action);
+void register_sweep(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

@@ -15,5 +15,6 @@ int main(int argc, char** argv) {
     register_bench(app, action);
     register_convert(app, action);
     register_view(app, action);
+    register_sweep(app, action);
     return run_cli(app, action, argc, argv);
 }

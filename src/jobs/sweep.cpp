@@ -1,0 +1,297 @@
+// The sweep job: sanitise, gather the view totals once, then per method one ranking cut at every
+// fraction and measured; the unpruned scene at each SH degree; sheets of the best method; files.
+#include "vksplat/jobs/sweep.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <optional>
+#include <string>
+
+#include "sweep_parts.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/eval/comparison_sheet.hpp"
+#include "vksplat/eval/metrics.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
+#include "vksplat/jobs/render_views.hpp"
+#include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/quality.hpp"
+#include "vksplat/prune/score_files.hpp"
+#include "vksplat/prune/selection.hpp"
+
+namespace vksplat::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+using sweep_detail::Targets;
+
+// What the sweep writes into out_dir; any of them there already means an earlier sweep's results.
+const char* const kOutputs[] = {"sweep.csv", "sh_degrees.csv", "totals.npy", "report.html", "charts", "sheets"};
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void check_options(const SweepOptions& options, size_t camera_count) {
+    if (options.out_dir.empty()) throw InputError("sweep", "no output folder given");
+    if (fs::exists(options.out_dir) && !fs::is_directory(options.out_dir))
+        throw InputError(options.out_dir.string(), "is not a folder");
+    if (options.mode == io::WriteMode::refuse_existing)
+        for (const char* name : kOutputs)
+            if (fs::exists(options.out_dir / name))
+                throw InputError((options.out_dir / name).string(),
+                                 "already exists (results of an earlier sweep?); not overwritten (ask for overwrite "
+                                 "to replace them)");
+    if (options.images_dir.empty()) throw InputError("sweep", "no photos given: the sweep measures against them");
+    if (!fs::is_directory(options.images_dir))
+        throw InputError(options.images_dir.string(), "is not a folder of photos");
+    for (double f : options.fractions)
+        if (!(f >= 0 && f <= 1))
+            throw InputError("fraction " + std::to_string(f), "must lie in [0, 1] (the fraction to drop)");
+    if (options.timing_repetitions < 0) throw InputError("timing repetitions", "must be 0 or more");
+    if (options.timing_warmup < 0) throw InputError("timing warm-up", "must be 0 or more");
+    if (!(options.sheet_max_error > 0)) throw InputError("sheet max error", "must be positive");
+    for (const auto* views : {&options.test_views, &options.train_views})
+        for (size_t view : *views)
+            if (view >= camera_count)
+                throw InputError("view " + std::to_string(view),
+                                 "there are only " + std::to_string(camera_count) + " cameras");
+}
+
+std::vector<prune::ScoreMethod> methods_of(const SweepOptions& options) {
+    if (!options.methods.empty()) return options.methods;
+    std::vector<prune::ScoreMethod> all;
+    for (const std::string& name : prune::score_method_names()) all.push_back(prune::parse_score_method(name));
+    return all;
+}
+
+Targets make_targets(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                     const SweepOptions& options) {
+    Targets targets;
+    targets.cameras = cameras;
+    targets.photos = prune::photo_targets(cameras, options.images_dir, options.settings.background).targets;
+    targets.unpruned = prune::render_targets(renderer, cloud, cameras, options.settings).targets;
+    return targets;
+}
+
+// The unpruned scene rendered at each SH degree up to its own, against the photos.
+std::vector<ShDegreeMeasure> measure_sh_degrees(Renderer& renderer, const GaussianCloud& cloud, const Targets& targets,
+                                                const SweepOptions& options, const SweepProgress& progress) {
+    std::vector<ShDegreeMeasure> degrees;
+    renderer.set_scene(cloud);
+    for (int degree = 0; degree <= cloud.sh_degree; ++degree) {
+        if (progress.step) progress.step("SH degrees", size_t(degree), size_t(cloud.sh_degree) + 1);
+        RenderSettings settings = options.settings;
+        settings.max_sh_degree = degree;
+        ShDegreeMeasure m;
+        m.degree = degree;
+        m.bytes = cloud.with_sh_degree(degree).ply_bytes();
+        for (size_t v = 0; v < targets.cameras.size(); ++v) {
+            const RenderOutput image = renderer.render(targets.cameras[v], settings);
+            m.view_psnr.push_back(eval::psnr(image.rgb.data(), targets.photos[v].data(), image.width, image.height));
+            m.psnr += m.view_psnr.back();
+            m.ssim += eval::ssim(image.rgb.data(), targets.photos[v].data(), image.width, image.height);
+        }
+        m.psnr /= double(targets.cameras.size());
+        m.ssim /= double(targets.cameras.size());
+        degrees.push_back(std::move(m));
+    }
+    if (progress.step) progress.step("SH degrees", size_t(cloud.sh_degree) + 1, size_t(cloud.sh_degree) + 1);
+    return degrees;
+}
+
+// What rendering the training views costs without statistics: the yardstick for scoring.
+double plain_render_seconds(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                            const std::vector<size_t>& views, const RenderSettings& settings,
+                            const SweepProgress& progress) {
+    renderer.set_scene(cloud);
+    double seconds = 0;
+    for (size_t i = 0; i < views.size(); ++i) {
+        if (progress.step) progress.step("plain renders of the training views", i, views.size());
+        const auto start = std::chrono::steady_clock::now();
+        renderer.render(cameras[views[i]], settings);
+        seconds += seconds_since(start);
+    }
+    if (progress.step) progress.step("plain renders of the training views", views.size(), views.size());
+    return seconds;
+}
+
+// How many Gaussians a fraction keeps: as prune::select_ratio counts (round(f * N) dropped of all
+// N, the lossless pass's drop included).
+size_t kept_count(size_t n, double fraction) { return n - size_t(std::llround(fraction * double(n))); }
+
+// photo | unpruned | pruned | error, one sheet per test view, for `method` at each fraction.
+std::vector<fs::path> write_sheets(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking,
+                                   prune::ScoreMethod method, const std::vector<double>& fractions,
+                                   const Targets& targets, const SweepOptions& options,
+                                   const std::vector<std::string>& stems, const SweepProgress& progress) {
+    std::vector<fs::path> sheets;
+    const std::string name(prune::to_string(method));
+    const size_t total = fractions.size() * targets.cameras.size();
+    for (double fraction : fractions) {
+        const GaussianCloud pruned = cloud.subset(ranking.keep_best(kept_count(cloud.size(), fraction)));
+        renderer.set_scene(pruned);
+        const std::string label = fraction_label(fraction);
+        for (size_t v = 0; v < targets.cameras.size(); ++v) {
+            if (progress.step) progress.step("comparison sheets", sheets.size(), total);
+            const RenderOutput image = renderer.render(targets.cameras[v], options.settings);
+            const int w = image.width, h = image.height;
+            const fs::path relative = fs::path("sheets") / (stems[v] + "_" + name + "_" + label + ".png");
+            eval::write_comparison_sheet(
+                options.out_dir / relative,
+                {{"photo", w, h, targets.photos[v]},
+                 {"unpruned", w, h, targets.unpruned[v]},
+                 {name + ", " + label + " dropped", w, h, image.rgb},
+                 eval::heat_map_panel(image.rgb.data(), targets.unpruned[v].data(), w, h, options.sheet_max_error,
+                                      "error vs unpruned")},
+                options.mode);
+            sheets.push_back(relative);
+        }
+    }
+    if (progress.step) progress.step("comparison sheets", total, total);
+    return sheets;
+}
+
+std::vector<double> swept_sheet_fractions(const SweepOptions& options, const std::vector<double>& fractions) {
+    std::vector<double> chosen;
+    for (double f : options.sheet_fractions)
+        if (std::any_of(fractions.begin(), fractions.end(), [&](double g) { return std::abs(f - g) < 1e-9; }))
+            chosen.push_back(f);
+    return chosen;
+}
+
+}  // namespace
+
+std::string fraction_label(double fraction) {
+    char text[48];
+    std::snprintf(text, sizeof(text), "%.4f", fraction);
+    std::string label = text;
+    while (label.back() == '0') label.pop_back();
+    if (label.back() == '.') label.pop_back();
+    return label;
+}
+
+std::vector<double> default_sweep_fractions() { return {0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98}; }
+
+std::vector<size_t> spread_views(const std::vector<size_t>& views, size_t count) {
+    if (count == 0 || count >= views.size()) return views;
+    std::vector<size_t> picked;
+    for (size_t i = 0; i < count; ++i) picked.push_back(views[i * views.size() / count]);
+    return picked;
+}
+
+prune::ScoreMethod best_method(const std::vector<SweepRow>& rows) {
+    if (rows.empty()) throw std::invalid_argument("jobs::best_method: no rows");
+    std::vector<prune::ScoreMethod> order;
+    std::map<prune::ScoreMethod, std::pair<double, size_t>> sums;
+    for (const SweepRow& row : rows) {
+        if (std::find(order.begin(), order.end(), row.method) == order.end()) order.push_back(row.method);
+        if (row.fraction <= 0) continue;
+        sums[row.method].first += row.measure.psnr;
+        ++sums[row.method].second;
+    }
+    prune::ScoreMethod best = order.front();
+    double best_mean = -std::numeric_limits<double>::infinity();
+    for (prune::ScoreMethod method : order) {
+        const auto it = sums.find(method);
+        if (it == sums.end()) continue;
+        const double mean = it->second.first / double(it->second.second);
+        if (mean > best_mean) best_mean = mean, best = method;
+    }
+    return best;
+}
+
+SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const std::vector<Camera>& cameras,
+                        const SweepOptions& options, const SweepProgress& progress) {
+    check_options(options, cameras.size());
+    const std::vector<prune::ScoreMethod> methods = methods_of(options);
+    const std::vector<double> fractions = options.fractions.empty() ? default_sweep_fractions() : options.fractions;
+
+    SweepResult result;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.train_views = spread_views(
+        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views,
+        options.max_train_views);
+    std::vector<Camera> test_cameras;
+    std::vector<std::string> stems;
+    for (size_t view : result.test_views) {
+        test_cameras.push_back(cameras[view]);
+        stems.push_back(output_stem(cameras[view], view));
+        result.test_view_names.push_back(cameras[view].name.empty() ? stems.back() : cameras[view].name);
+    }
+
+    // Sanitised once here, so that totals, scores and masks all index the same Gaussians.
+    GaussianCloud cloud = input;
+    result.sanitize = sanitize(cloud);
+    // Photos first: a missing one is reported before the long part.
+    const char* const unpruned_stage = "photos and the unpruned scene";
+    if (progress.step) progress.step(unpruned_stage, 0, 2);
+    const Targets targets = make_targets(renderer, cloud, test_cameras, options);
+    fs::create_directories(options.out_dir / "charts");
+    fs::create_directories(options.out_dir / "sheets");
+    if (progress.step) progress.step(unpruned_stage, 1, 2);
+    result.unpruned = sweep_detail::measure_model(renderer, cloud, targets, options);
+    if (progress.step) progress.step(unpruned_stage, 2, 2);
+    result.sh_degrees = measure_sh_degrees(renderer, cloud, targets, options, progress);
+
+    const auto scoring_start = std::chrono::steady_clock::now();
+    const prune::ViewTotals totals = prune::accumulate(
+        renderer, cloud, cameras, result.train_views, options.settings, [&](size_t done, size_t total) {
+            if (progress.step) progress.step("scoring the training views", done, total);
+        });
+    result.scoring_seconds = seconds_since(scoring_start);
+    if (options.compare_scoring_cost)
+        result.plain_render_seconds =
+            plain_render_seconds(renderer, cloud, cameras, result.train_views, options.settings, progress);
+    const prune::KeepMask candidates = prune::lossless_mask(totals);
+    result.lossless_dropped = cloud.size() - prune::count_kept(candidates);
+
+    // Every fraction the lossless pass alone covers keeps the same model, whatever the method.
+    std::optional<ModelMeasure> lossless_only;
+    const size_t total_rows = methods.size() * fractions.size();
+    for (prune::ScoreMethod method : methods) {
+        const prune::Ranking ranking(prune::score(cloud, totals, method, options.seed), candidates);
+        for (double fraction : fractions) {
+            if (progress.step) progress.step("sweep", result.rows.size(), total_rows);
+            const size_t keep = kept_count(cloud.size(), fraction);
+            SweepRow row;
+            row.method = method;
+            row.fraction = fraction;
+            if (keep >= ranking.candidates()) {
+                if (!lossless_only)
+                    lossless_only = sweep_detail::measure_model(renderer, cloud.subset(candidates), targets, options);
+                row.measure = *lossless_only;
+            } else {
+                row.measure = sweep_detail::measure_model(renderer, cloud.subset(ranking.keep_best(keep)), targets,
+                                                          options);
+            }
+            row.dropped = cloud.empty() ? 0.0 : 1.0 - double(row.measure.gaussians) / double(cloud.size());
+            row.delta_psnr = row.measure.psnr - result.unpruned.psnr;
+            result.rows.push_back(row);
+            if (progress.row) progress.row(result.rows.back());
+        }
+    }
+    if (progress.step) progress.step("sweep", total_rows, total_rows);
+
+    result.best_method = best_method(result.rows);
+    result.sheet_fractions = swept_sheet_fractions(options, fractions);
+    result.sheets = write_sheets(renderer, cloud,
+                                 prune::Ranking(prune::score(cloud, totals, result.best_method, options.seed), candidates),
+                                 result.best_method, result.sheet_fractions, targets, options, stems, progress);
+
+    result.csv = fs::absolute(options.out_dir / "sweep.csv");
+    result.sh_csv = fs::absolute(options.out_dir / "sh_degrees.csv");
+    result.totals = fs::absolute(options.out_dir / "totals.npy");
+    result.report = fs::absolute(options.out_dir / "report.html");
+    sweep_detail::write_sweep_csv(result.csv, result, options.mode);
+    sweep_detail::write_sh_csv(result.sh_csv, result, options.mode);
+    prune::save_totals(totals, result.totals, options.mode);
+    const sweep_detail::SweepCharts charts = sweep_detail::write_sweep_charts(options.out_dir, result, options.mode);
+    sweep_detail::write_sweep_report(result.report, result, options, charts, options.mode);
+    return result;
+}
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,353 @@
+// The sweep job on a small generated scene with generated photos: the CSV, charts, sheets and
+// report it writes and how they refer to each other, its numbers, its refusals; and the report
+// that report_screenshot_test.sh opens in a headless browser.
+#include "vksplat/jobs/sweep.hpp"
+
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/eval/comparison_sheet.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/prune/score_files.hpp"
+#include "vksplat/prune/selection.hpp"
+
+namespace vksplat::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string read_text(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+size_t count(const std::string& haystack, const std::string& needle) {
+    size_t n = 0;
+    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + 1)) ++n;
+    return n;
+}
+
+std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
+    std::vector<std::vector<std::string>> rows;
+    std::ifstream in(path);
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream s(line);
+        for (std::string cell; std::getline(s, cell, ',');) cells.push_back(cell);
+        rows.push_back(cells);
+    }
+    return rows;
+}
+
+class Sweep : public GpuTest {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("vksplat_sweep_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir / "photos");
+        renderer = std::make_unique<Renderer>(context());
+        cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
+        for (int i = 0; i < 5; ++i) {
+            Camera camera = Camera::look_at({0.4 * (i - 2), 0.2 * (i % 2), 0.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0},
+                                            48, 40, 45.0, 45.0);
+            camera.name = "view_" + std::to_string(i);
+            cameras.push_back(camera);
+        }
+        // The photos: the scene's own renders, in 8 bits (so the unpruned scene scores about 50 dB).
+        renderer->set_scene(cloud);
+        for (const Camera& camera : cameras) {
+            const RenderOutput image = renderer->render(camera);
+            io::write_png_rgb(dir / "photos" / (camera.name + ".png"), image.width, image.height, image.rgb.data(), 8);
+        }
+    }
+    void TearDown() override {
+        fs::remove_all(dir);
+        GpuTest::TearDown();
+    }
+    // A quick sweep: one timed frame per model on one view.
+    jobs::SweepOptions options(const fs::path& out) const {
+        jobs::SweepOptions o;
+        o.images_dir = dir / "photos";
+        o.out_dir = out;
+        o.timing_views = 1;
+        o.timing_warmup = 0;
+        o.timing_repetitions = 1;
+        o.scene_label = "random_scene(71)";
+        return o;
+    }
+    fs::path dir;
+    std::unique_ptr<Renderer> renderer;
+    GaussianCloud cloud;
+    std::vector<Camera> cameras;
+};
+
+TEST(SweepHelpers, FractionsViewsAndBestMethod) {
+    EXPECT_EQ(jobs::default_sweep_fractions(),
+              (std::vector<double>{0, 0.1, 0.2, 0.3, 0.4, 0.5, 0.6, 0.7, 0.8, 0.9, 0.95, 0.98}));
+    EXPECT_EQ(jobs::fraction_label(0), "0");
+    EXPECT_EQ(jobs::fraction_label(0.5), "0.5");
+    EXPECT_EQ(jobs::fraction_label(0.95), "0.95");
+    EXPECT_EQ(jobs::fraction_label(1), "1");
+    const std::vector<size_t> views = {13, 14, 15, 16, 17, 18, 19, 20, 21, 22};
+    EXPECT_EQ(jobs::spread_views(views, 0), views);
+    EXPECT_EQ(jobs::spread_views(views, 10), views);
+    EXPECT_EQ(jobs::spread_views(views, 3), (std::vector<size_t>{13, 16, 19}));
+    EXPECT_EQ(jobs::spread_views(views, 1), (std::vector<size_t>{13}));
+
+    using prune::ScoreMethod;
+    auto row = [](ScoreMethod method, double fraction, double psnr) {
+        jobs::SweepRow r;
+        r.method = method;
+        r.fraction = fraction;
+        r.measure.psnr = psnr;
+        return r;
+    };
+    // Fraction 0 does not count: blend's 40 dB there would otherwise win.
+    EXPECT_EQ(jobs::best_method({row(ScoreMethod::opacity, 0, 30), row(ScoreMethod::opacity, 0.5, 28),
+                                 row(ScoreMethod::opacity, 0.9, 20), row(ScoreMethod::blend, 0, 40),
+                                 row(ScoreMethod::blend, 0.5, 29), row(ScoreMethod::blend, 0.9, 18)}),
+              ScoreMethod::opacity);
+    EXPECT_EQ(jobs::best_method({row(ScoreMethod::random, 0, 30), row(ScoreMethod::blend, 0, 31)}),
+              ScoreMethod::random);
+    EXPECT_EQ(jobs::best_method({row(ScoreMethod::footprint, 0.5, 30), row(ScoreMethod::blend, 0.5, 30)}),
+              ScoreMethod::footprint)
+        << "ties go to the first";
+}
+
+TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
+    const fs::path out = dir / "out";
+    size_t rows_heard = 0, steps_heard = 0;
+    jobs::SweepProgress progress;
+    progress.row = [&](const jobs::SweepRow&) { ++rows_heard; };
+    progress.step = [&](const std::string&, size_t done, size_t total) {
+        EXPECT_LE(done, total);
+        ++steps_heard;
+    };
+    const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, options(out), progress);
+    const std::vector<std::string> methods = prune::score_method_names();
+    const std::vector<double> fractions = jobs::default_sweep_fractions();
+    ASSERT_EQ(result.rows.size(), methods.size() * fractions.size());
+    EXPECT_EQ(rows_heard, result.rows.size());
+    EXPECT_GT(steps_heard, result.rows.size());
+
+    // The unpruned scene against its own 8-bit photos; timing and the scoring comparison happened.
+    const size_t n = cloud.size();
+    EXPECT_EQ(result.unpruned.gaussians, n);
+    EXPECT_GT(result.unpruned.psnr, 45.0);
+    EXPECT_GT(result.unpruned.ssim, 0.99);
+    EXPECT_TRUE(std::isinf(result.unpruned.psnr_vs_unpruned));
+    EXPECT_GT(result.unpruned.ms_per_frame, 0.0);
+    EXPECT_GT(result.scoring_seconds, 0.0);
+    EXPECT_GT(result.plain_render_seconds, 0.0);
+    EXPECT_EQ(result.train_views, result.test_views) << "5 cameras: all are test and training views";
+
+    // sweep.csv: a header and one row per (method, fraction), method-major, matching the result.
+    const auto csv = read_csv(out / "sweep.csv");
+    ASSERT_EQ(csv.size(), 1 + result.rows.size());
+    EXPECT_EQ(csv[0], (std::vector<std::string>{"method", "fraction", "dropped", "gaussians", "bytes", "megabytes",
+                                                "psnr", "delta_psnr", "ssim", "psnr_vs_unpruned", "ssim_vs_unpruned",
+                                                "ms_per_frame"}));
+    const size_t candidates = n - result.lossless_dropped;
+    for (size_t m = 0; m < methods.size(); ++m)
+        for (size_t f = 0; f < fractions.size(); ++f) {
+            const size_t i = m * fractions.size() + f;
+            const jobs::SweepRow& row = result.rows[i];
+            const auto& cells = csv[1 + i];
+            SCOPED_TRACE(methods[m] + " at " + std::to_string(fractions[f]));
+            ASSERT_EQ(cells.size(), 12u);
+            EXPECT_EQ(cells[0], methods[m]);
+            EXPECT_EQ(std::stod(cells[1]), fractions[f]);
+            EXPECT_EQ(std::stoul(cells[3]), row.measure.gaussians);
+            EXPECT_NEAR(std::stod(cells[6]), row.measure.psnr, 1e-4);
+
+            // As select_ratio counts: round(f * N) dropped, the lossless pass's drop included.
+            const size_t asked = n - size_t(std::llround(fractions[f] * double(n)));
+            EXPECT_EQ(row.measure.gaussians, std::min(asked, candidates));
+            EXPECT_NEAR(row.dropped, 1.0 - double(row.measure.gaussians) / double(n), 1e-12);
+            EXPECT_LE(row.measure.bytes, result.unpruned.bytes);
+            EXPECT_GT(row.measure.psnr, 5.0);
+            EXPECT_LE(row.measure.psnr, result.unpruned.psnr + 1e-9);
+            EXPECT_NEAR(row.delta_psnr, row.measure.psnr - result.unpruned.psnr, 1e-12);
+            EXPECT_GT(row.measure.ssim, 0.0);
+            EXPECT_LE(row.measure.ssim, 1.0);
+            EXPECT_GT(row.measure.ms_per_frame, 0.0);
+            EXPECT_EQ(row.measure.view_psnr.size(), cameras.size());
+            if (fractions[f] == 0) {
+                // The lossless pass alone: bit-identical on the views it was gathered over.
+                EXPECT_EQ(row.measure.psnr, result.unpruned.psnr);
+                EXPECT_EQ(row.measure.ssim, result.unpruned.ssim);
+                EXPECT_EQ(row.delta_psnr, 0.0);
+                EXPECT_TRUE(std::isinf(row.measure.psnr_vs_unpruned));
+                EXPECT_EQ(cells[9], "inf");
+                EXPECT_EQ(row.measure.ssim_vs_unpruned, 1.0);
+            } else {
+                EXPECT_TRUE(std::isfinite(row.measure.psnr_vs_unpruned));
+                EXPECT_LT(row.measure.ssim_vs_unpruned, 1.0);
+            }
+            if (f > 0) {
+                EXPECT_LT(row.measure.bytes, result.rows[i - 1].measure.bytes);
+            }
+        }
+    // Dropping 98% hurts every method; a score that reads the renders beats chance.
+    const auto at = [&](prune::ScoreMethod method, double fraction) {
+        for (const auto& row : result.rows)
+            if (row.method == method && row.fraction == fraction) return row.measure.psnr;
+        ADD_FAILURE() << "no row";
+        return 0.0;
+    };
+    for (const auto& row : result.rows)
+        if (row.fraction == 0.98) {
+            EXPECT_LT(row.delta_psnr, -1.0) << prune::to_string(row.method);
+        }
+    EXPECT_GT(at(prune::ScoreMethod::blend, 0.5), at(prune::ScoreMethod::random, 0.5));
+    EXPECT_GT(at(prune::ScoreMethod::blend, 0.9), at(prune::ScoreMethod::random, 0.9));
+    EXPECT_NE(result.best_method, prune::ScoreMethod::random);
+
+    // SH degrees 0..2 (the scene's), each view's PSNR, and their CSV.
+    ASSERT_EQ(result.sh_degrees.size(), 3u);
+    EXPECT_EQ(result.sh_degrees.back().psnr, result.unpruned.psnr);
+    EXPECT_LT(result.sh_degrees.front().bytes, result.sh_degrees.back().bytes);
+    EXPECT_EQ(read_csv(out / "sh_degrees.csv").size(), 1 + 3 * (cameras.size() + 1));
+
+    // The view totals, for `vksplat prune --load-scores`: they rank as the sweep did.
+    const prune::ScoreFile totals = prune::load_score_file(out / "totals.npy");
+    ASSERT_TRUE(totals.totals);
+    EXPECT_EQ(totals.size(), n);
+    EXPECT_EQ(n - prune::count_kept(prune::lossless_mask(*totals.totals)), result.lossless_dropped);
+
+    // Sheets: every test view for the best method at 0.5, 0.8 and 0.9, four panels wide.
+    EXPECT_EQ(result.sheet_fractions, (std::vector<double>{0.5, 0.8, 0.9}));
+    ASSERT_EQ(result.sheets.size(), 3 * cameras.size());
+    const io::ImageRGB sheet = io::read_image_rgb(out / result.sheets.front(), {1, 1, 1});
+    EXPECT_EQ(sheet.width, 3 * 48 + 48 + eval::heat_bar_width(40, 0.1f));
+    const std::string best(prune::to_string(result.best_method));
+    EXPECT_EQ(result.sheets.front(), fs::path("sheets") / ("view_0_" + best + "_0.5.png"));
+
+    // The report shows every chart and sheet by a relative path that exists, and names the best method.
+    const std::string html = read_text(result.report);
+    EXPECT_EQ(result.report, fs::absolute(out / "report.html"));
+    for (const char* chart : {"psnr_vs_fraction", "delta_psnr_vs_fraction", "ssim_vs_fraction", "psnr_vs_ms",
+                              "psnr_vs_mb", "psnr_by_sh_degree"}) {
+        const std::string relative = std::string("charts/") + chart + ".svg";
+        SCOPED_TRACE(relative);
+        ASSERT_TRUE(fs::is_regular_file(out / relative));
+        EXPECT_EQ(count(html, "src=\"" + relative + "\""), 1u);
+        const std::string svg = read_text(out / relative);
+        EXPECT_EQ(count(svg, "class=\"series\""), std::string(chart) == "psnr_by_sh_degree" ? cameras.size()
+                                                                                          : methods.size());
+    }
+    for (const fs::path& relative : result.sheets) {
+        EXPECT_TRUE(fs::is_regular_file(out / relative)) << relative;
+        EXPECT_EQ(count(html, "src=\"" + relative.generic_string() + "\""), 1u) << relative;
+    }
+    EXPECT_NE(html.find("For the best method, " + best), std::string::npos);
+    EXPECT_NE(html.find("sweep.csv"), std::string::npos);
+    EXPECT_EQ(count(html, "<tr>"), 1 + 1 + result.rows.size() + 1 + 3) << "sweep table with unpruned, SH table";
+}
+
+TEST_F(Sweep, RefusesBadOptionsAndEarlierResultsBeforeAnyWork) {
+    const fs::path out = dir / "out";
+    auto quick = options(out);
+    quick.methods = {prune::ScoreMethod::blend};
+    quick.fractions = {0, 0.5};
+    quick.compare_scoring_cost = false;
+
+    fs::create_directories(out);
+    std::ofstream(out / "sweep.csv") << "mine";
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick), InputError);
+    EXPECT_EQ(read_text(out / "sweep.csv"), "mine");
+    EXPECT_FALSE(fs::exists(out / "report.html"));
+    EXPECT_FALSE(fs::exists(out / "charts"));
+    fs::remove(out / "sweep.csv");
+    std::ofstream(out / "totals.npy") << "mine";
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick), InputError);
+    fs::remove(out / "totals.npy");
+    fs::create_directories(out / "charts");
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick), InputError) << "a charts folder is results too";
+
+    auto bad = quick;
+    bad.mode = io::WriteMode::overwrite;
+    bad.fractions = {0.5, 1.5};
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, bad), InputError);
+    bad.fractions = {0.5};
+    bad.test_views = {0, 7};
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, bad), InputError);
+    bad.test_views = {};
+    bad.images_dir = dir / "no_photos";
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, bad), InputError);
+    bad.images_dir.clear();
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, bad), InputError);
+    bad.images_dir = dir / "photos";
+    bad.timing_repetitions = -1;
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, bad), InputError);
+    fs::remove(dir / "photos" / "view_3.png");
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick), InputError) << "charts/ still there";
+    try {
+        auto missing = quick;
+        missing.mode = io::WriteMode::overwrite;
+        jobs::sweep_scene(*renderer, cloud, cameras, missing);
+        ADD_FAILURE() << "a missing photo must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("view_3"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(out / "sweep.csv"));
+    EXPECT_TRUE(fs::is_empty(out / "charts"));
+
+    // Asked to, it overwrites; a quick run has what was asked for and no sheets at fractions not swept.
+    const jobs::SweepResult first = [&] {
+        auto again = quick;
+        again.mode = io::WriteMode::overwrite;
+        again.test_views = {0, 1};
+        again.max_train_views = 2;
+        return jobs::sweep_scene(*renderer, cloud, cameras, again);
+    }();
+    EXPECT_EQ(first.rows.size(), 2u);
+    EXPECT_EQ(first.train_views, (std::vector<size_t>{2, 3}));
+    EXPECT_EQ(first.sheet_fractions, (std::vector<double>{0.5}));
+    EXPECT_EQ(first.sheets.size(), 2u);
+    EXPECT_EQ(first.plain_render_seconds, 0.0);
+    EXPECT_EQ(read_csv(out / "sweep.csv").size(), 3u);
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, [&] {
+                     auto o = quick;
+                     o.test_views = {0, 1};
+                     return o;
+                 }()),
+                 InputError)
+        << "the first run's results are not overwritten unless asked";
+}
+
+// Writes a sweep's report for report_screenshot_test.sh, into VKSPLAT_SAMPLE_REPORT_DIR when set
+// (the script then has Chromium take a screenshot and checks it), else into a folder of its own.
+TEST_F(Sweep, WritesAReportForTheBrowser) {
+    const char* named = std::getenv("VKSPLAT_SAMPLE_REPORT_DIR");
+    const fs::path out = named != nullptr && *named != '\0' ? fs::path(named) : dir / "report";
+    auto o = options(out);
+    o.methods = {prune::ScoreMethod::opacity, prune::ScoreMethod::footprint, prune::ScoreMethod::blend};
+    o.fractions = {0, 0.5, 0.9};
+    o.compare_scoring_cost = false;
+    o.timing_repetitions = 0;  // timed by the measuring renders alone
+    o.mode = io::WriteMode::overwrite;
+    const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, o);
+    EXPECT_TRUE(fs::is_regular_file(out / "report.html"));
+    for (const auto& row : result.rows) EXPECT_GT(row.measure.ms_per_frame, 0.0);
+    EXPECT_EQ(result.rows.size(), 9u);
+    EXPECT_EQ(result.sheets.size(), 2 * cameras.size());
+}
+
+}  // namespace
+}  // namespace vksplat::test
