@@ -25,5 +25,6 @@ void register_info(CLI::App& app, Action& action);
 void register_render(CLI::App& app, Action& action);
 void register_demo(CLI::App& app, Action& action);
 void register_prune(CLI::App& app, Action& action);
+void register_cluster(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
     register_render(app, action);
     register_demo(app, action);
     register_prune(app, action);
+    register_cluster(app, action);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
