@@ -74,9 +74,10 @@ Clustering label_clusters(DisjointSets& sets) {
     s.singletons = size_t(std::count(sizes.begin(), sizes.end(), 1.0));
     s.largest = sizes.empty() ? 0 : size_t(*std::max_element(sizes.begin(), sizes.end()));
     s.size_percentiles = percentiles(sizes, kReportPercents);
-    if (n > 1 && s.singletons == n)
-        s.warnings.push_back("every Gaussian is its own cluster: delta is too small for the scene's spacing, or "
-                             "the region maps disagree everywhere (noise?); scores then rank single Gaussians");
+    if (n > 1 && double(s.singletons) >= 0.9 * double(n))
+        s.warnings.push_back(std::to_string(s.singletons) + " of " + std::to_string(n) +
+                             " Gaussians are their own cluster: delta is too small for the scene's spacing, or the "
+                             "region maps disagree everywhere (noise?); scores then rank single Gaussians");
     else if (n > 1 && double(s.largest) >= 0.9 * double(n))
         s.warnings.push_back("one cluster holds " + std::to_string(s.largest) + " of " + std::to_string(n) +
                              " Gaussians: delta is too large or the region maps do not separate parts, so "

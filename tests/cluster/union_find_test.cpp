@@ -88,7 +88,7 @@ TEST(BuildClusters, DeltaTooSmallLeavesSingletonsWithAWarning) {
     EXPECT_EQ(c.summary.clusters, 40u);
     EXPECT_EQ(c.summary.singletons, 40u);
     ASSERT_EQ(c.summary.warnings.size(), 1u);
-    EXPECT_NE(c.summary.warnings[0].find("its own cluster"), std::string::npos);
+    EXPECT_NE(c.summary.warnings[0].find("40 of 40 Gaussians are their own cluster"), std::string::npos);
 }
 
 TEST(BuildClusters, DeltaTooLargeGivesOneClusterWithAWarning) {
