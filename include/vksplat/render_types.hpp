@@ -28,10 +28,13 @@ struct GaussianStats {
     // transmittance floor. A Gaussian with 0 here in every view can go without changing any of
     // those views' pixels.
     std::vector<uint32_t> pixels;
+    // alpha * T at the pixel nearest its projected centre: 0 where that pixel was already opaque
+    // before the splat was reached (occluded there) or the splat was too faint to blend.
+    std::vector<float> centre_weight;
 
     void resize(size_t n) {
         visible.assign(n, 0);
-        for (auto* v : {&screen_x, &screen_y, &depth, &radius, &max_weight}) v->assign(n, 0.0f);
+        for (auto* v : {&screen_x, &screen_y, &depth, &radius, &max_weight, &centre_weight}) v->assign(n, 0.0f);
         blend_weight.assign(n, 0.0);
         pixels.assign(n, 0);
     }

@@ -66,11 +66,15 @@ layout(push_constant) uniform Push {
     Uint64s stat_weight;     // per Gaussian: sum of alpha * T (fixed point)
     Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
     Uints stat_pixels;       // per Gaussian: pixels where alpha >= 1/255
+    Uints stat_centre_weight;  // per Gaussian: alpha * T at the pixel holding its centre (float bits)
 #endif
 } pc;
 
 #if GATHER_STATS
-void record_stats(uint gaussian, float weight) {
+// Only the one pixel nearest the projected centre writes it, so no atomic is needed; it stays 0
+// where the pixel finished before reaching the splat (occluded) or the splat is too faint there.
+void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
+    if (all(equal(uvec2(ivec2(floor(mean + 0.5))), pixel))) pc.stat_centre_weight.v[gaussian] = floatBitsToUint(weight);
     if (weight > 0.0) {
         atomicAdd(pc.stat_weight.v[gaussian], uint64_t(weight * WEIGHT_SCALE));
         atomicMax(pc.stat_max_weight.v[gaussian], floatBitsToUint(weight));
@@ -139,14 +143,14 @@ void main() {
             if (next_transmittance < MIN_TRANSMITTANCE) {
                 // It stops the pixel without adding to it: still a pixel it decides.
 #if GATHER_STATS
-                record_stats(batch_gaussian[j], 0.0);
+                record_stats(batch_gaussian[j], 0.0, mean_depth.xy, pixel);
 #endif
                 done = true;
                 continue;
             }
             const float weight = alpha * transmittance;
 #if GATHER_STATS
-            record_stats(batch_gaussian[j], weight);
+            record_stats(batch_gaussian[j], weight, mean_depth.xy, pixel);
 #endif
             color += batch_color[j].rgb * weight;
             depth_sum += mean_depth.z * weight;

@@ -40,9 +40,12 @@ std::vector<std::vector<uint32_t>> tile_lists(const std::vector<ProjectedGaussia
 }
 
 // blend_pixel reports each splat that reaches alpha >= 1/255 here (weight 0 for the one that
-// stops the pixel), when the caller gathers statistics.
-void record(GaussianStats* stats, uint32_t i, double weight) {
+// stops the pixel), when the caller gathers statistics. The pixel nearest the splat's projected
+// centre also sets its centre weight.
+void record(GaussianStats* stats, uint32_t i, double weight, glm::dvec2 mean, glm::dvec2 pixel) {
     if (!stats) return;
+    if (std::floor(mean.x + 0.5) == pixel.x && std::floor(mean.y + 0.5) == pixel.y)
+        stats->centre_weight[i] = static_cast<float>(weight);
     stats->blend_weight[i] += weight;
     stats->max_weight[i] = std::max(stats->max_weight[i], static_cast<float>(weight));
     ++stats->pixels[i];
@@ -61,11 +64,11 @@ PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std:
         const double test_t = result.transmittance * (1.0 - alpha);
         // The splat that would push T below the floor is not blended, and nothing after it is.
         if (test_t < kMinTransmittance) {
-            record(stats, i, 0.0);
+            record(stats, i, 0.0, s.mean, pixel);
             break;
         }
         const double weight = alpha * result.transmittance;
-        record(stats, i, weight);
+        record(stats, i, weight, s.mean, pixel);
         result.color += glm::dvec3(s.color[0], s.color[1], s.color[2]) * weight;
         result.depth_sum += s.depth * weight;
         result.weight_sum += weight;

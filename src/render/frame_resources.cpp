@@ -78,7 +78,8 @@ void FrameResources::ensure_stats(uint32_t count) {
     stat_weight = device(c, uint64_t(count) * 8, "blend weight per Gaussian");
     stat_max_weight = device(c, uint64_t(count) * 4, "max weight per Gaussian");
     stat_pixels = device(c, uint64_t(count) * 4, "pixels per Gaussian");
-    stats_readback = gpu::Buffer(c, uint64_t(count) * 32, gpu::MemoryKind::readback, "statistics readback");
+    stat_centre_weight = device(c, uint64_t(count) * 4, "centre-pixel weight per Gaussian");
+    stats_readback = gpu::Buffer(c, uint64_t(count) * 36, gpu::MemoryKind::readback, "statistics readback");
     stats_capacity = count;
 }
 
@@ -103,7 +104,8 @@ uint64_t FrameResources::device_bytes() const {
     for (const gpu::Buffer* b : {&camera, &counters, &means_depth, &conic_opacity, &colors, &rects, &tiles_touched,
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
-                                 &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels})
+                                 &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels,
+                                 &stat_centre_weight})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

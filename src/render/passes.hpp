@@ -52,10 +52,10 @@ struct BlendPush {
     Address camera, ranges, tile_values, means_depth, conic_opacity, colors, out_color_alpha, out_depth,
         out_contributors;
 };
-// The statistics variant (blend_stats.comp) takes three more buffers after the plain ones.
+// The statistics variant (blend_stats.comp) takes four more buffers after the plain ones.
 struct BlendStatsPush {
     BlendPush blend;
-    Address stat_weight, stat_max_weight, stat_pixels;
+    Address stat_weight, stat_max_weight, stat_pixels, stat_centre_weight;
 };
 void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendPush& push,
                   uint32_t tiles_x, uint32_t tiles_y);

@@ -119,6 +119,7 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
         stream.fill(f.stat_weight, 0);
         stream.fill(f.stat_max_weight, 0);
         stream.fill(f.stat_pixels, 0);
+        stream.fill(f.stat_centre_weight, 0);
     }
     stream.barrier();
 
@@ -184,7 +185,8 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
                                f.color_alpha.address(), f.depth.address(),         f.contributors.address()};
     if (gather_stats)
         record_blend_stats(stream, *blend_stats,
-                           {blend_push, f.stat_weight.address(), f.stat_max_weight.address(), f.stat_pixels.address()},
+                           {blend_push, f.stat_weight.address(), f.stat_max_weight.address(), f.stat_pixels.address(),
+                            f.stat_centre_weight.address()},
                            tiles_x, tiles_y);
     else
         record_blend(stream, blend, blend_push, tiles_x, tiles_y);
@@ -204,6 +206,7 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
         stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 16);
         stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 24);
         stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 28);
+        stream.copy(f.stat_centre_weight, f.stats_readback, g * 4, 0, g * 32);
     }
 
     const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
@@ -332,13 +335,14 @@ Renderer::~Renderer() { impl_->wait_for_recorded_frames(); }
 
 GaussianStats Renderer::Impl::read_stats() const {
     // Layout of the readback: means_depth (vec4 with the radius, 0 when the reference would cull),
-    // weight (uint64), max weight, pixels.
+    // weight (uint64), max weight, pixels, centre weight.
     const size_t n = scene.count;
     const auto* base = static_cast<const char*>(frame.stats_readback.mapped());
     const auto* means = reinterpret_cast<const float*>(base);
     const auto* weight = reinterpret_cast<const uint64_t*>(base + n * 16);
     const auto* max_weight = reinterpret_cast<const float*>(base + n * 24);
     const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 28);
+    const auto* centre_weight = reinterpret_cast<const float*>(base + n * 32);
     GaussianStats out;
     out.resize(input_count);
     for (size_t i = 0; i < n; ++i) {
@@ -353,6 +357,7 @@ GaussianStats Renderer::Impl::read_stats() const {
         out.blend_weight[at] = double(weight[i]) / 4294967296.0;  // 32.32 fixed point
         out.max_weight[at] = max_weight[i];
         out.pixels[at] = pixels[i];
+        out.centre_weight[at] = centre_weight[i];
     }
     return out;
 }

@@ -32,5 +32,6 @@ void register_bench(CLI::App& app, Action& action);
 void register_convert(CLI::App& app, Action& action);
 void register_view(CLI::App& app, Action& action);
 void register_sweep(CLI::App& app, Action& action);
+void register_cluster(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

@@ -16,5 +16,6 @@ int main(int argc, char** argv) {
     register_convert(app, action);
     register_view(app, action);
     register_sweep(app, action);
+    register_cluster(app, action);
     return run_cli(app, action, argc, argv);
 }

@@ -1,0 +1,108 @@
+#pragma once
+// Saliency-aware cluster pruning, stage by stage (what `vksplat cluster ...` runs):
+//   1 regions: render up to max_views training views, segment each into regions (or import
+//     region maps made elsewhere) and assess each map for the view filter;
+//   2 filter:  keep the views whose maps look like parts of a subject (cluster/view_filter.hpp);
+//   3 project: region id of every Gaussian in every kept view, with occlusion (GPU);
+//   4, 5 build: neighbour pairs (KD-tree) merged by union-find under the semantic constraint;
+//   6 score:   spatial variance, depth variance and multi-view visibility per cluster, G*;
+//   7 prune:   drop the clusters of lowest G*.
+// In memory here; jobs/cluster_work_dir.hpp saves each stage's output so that later stages can
+// be re-run with new parameters alone.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/cluster/cluster_scores.hpp"
+#include "vksplat/cluster/projection.hpp"
+#include "vksplat/cluster/region_map.hpp"
+#include "vksplat/cluster/segmentation.hpp"
+#include "vksplat/cluster/union_find.hpp"
+#include "vksplat/cluster/view_filter.hpp"
+#include "vksplat/prune/accumulate.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::jobs {
+
+struct ClusterOptions {
+    // Stage 1. Views: empty means the training views (all but INRIA's 13 test views), thinned
+    // evenly to at most max_views.
+    std::vector<size_t> views;
+    size_t max_views = 50;
+    double resolution_scale = 1.0;  // renders and built-in region maps at this fraction of the cameras' size
+    RenderSettings settings;        // background and SH degree of the renders
+    cluster::SegmentationParams segmentation;
+    // Stage 2. Non-empty: use exactly these views (camera indices, a subset of the rendered ones)
+    // instead of the filter's choice.
+    cluster::ViewFilterParams filter;
+    std::vector<size_t> keep_views;
+    // Stage 3.
+    cluster::ProjectionParams projection;
+    // Stages 4-5. delta: nullopt picks it from the nearest-neighbour distances (auto_delta).
+    std::optional<double> delta;
+    size_t max_neighbours = 16;
+    cluster::MergeRule merge;
+    // Stage 6.
+    cluster::ScoreWeights weights;
+    // Stage 7: drop G* < threshold when given, else the lowest prune_ratio of the clusters.
+    std::optional<double> score_threshold;
+    double prune_ratio = 0.9;
+};
+
+// Messages for the user: warnings, views dropped and why, statistics. One line per call.
+using Log = std::function<void(const std::string&)>;
+
+// Camera indices stage 1 renders.
+std::vector<size_t> region_views(size_t camera_count, const ClusterOptions& options);
+
+struct RegionView {
+    size_t view = 0;                // camera index
+    cluster::RegionMap map;
+    cluster::ViewQuality quality;   // under options.filter
+};
+
+// Where region maps come from: the built-in segmentation, or a function that returns the map
+// made elsewhere for a camera index (its size sets the render's size).
+using RegionSource = std::function<cluster::RegionMap(size_t view)>;
+
+// Stage 1 (and the assessment of stage 2). `on_view` sees each view's map and render (e.g. to
+// save them). Throws InputError when an imported map's aspect ratio is not its camera's.
+std::vector<RegionView> make_region_maps(Renderer& renderer, const GaussianCloud& cloud,
+                                         const std::vector<Camera>& cameras, const ClusterOptions& options,
+                                         const RegionSource& import = {},
+                                         const std::function<void(const RegionView&, const RenderOutput&)>& on_view = {},
+                                         const prune::Progress& progress = {});
+
+// Stage 2: positions in `regions` of the views to use, logging every view dropped and why. When
+// the filter drops every view, all are used, with a warning (better than no evidence at all).
+std::vector<size_t> filter_views(const std::vector<RegionView>& regions, const ClusterOptions& options,
+                                 const Log& log);
+
+// The camera a region map was made for: `camera` at the map's size. Throws InputError (naming
+// `where`) when the aspect ratios differ by more than 1%.
+Camera camera_for_map(const Camera& camera, const cluster::RegionMap& map, const std::string& where);
+
+// Stage 3: labels of every Gaussian of `cloud` in each of `views` (pointers into stage 1's output).
+cluster::ViewLabels project_views(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                                  const std::vector<Camera>& cameras, const std::vector<const RegionView*>& views,
+                                  const ClusterOptions& options, const prune::Progress& progress = {});
+
+// Stages 4-5, logging the nearest-neighbour statistics, the delta used and the cluster summary.
+cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster::ViewLabels& labels,
+                                      const ClusterOptions& options, const Log& log);
+
+// Prints the percentile table of the three normalised components.
+void log_score_table(const cluster::ClusterScores& scores, const Log& log);
+
+// Stages 1-6 in memory, then the kept count: the cluster-pruned keep mask with exactly
+// min(keep_count, N) Gaussians kept, clusters taken whole from the best G* down (the last one
+// partly, by index). Indexed like `cloud` after sanitize(); the renderer gets `cloud` as its scene.
+std::vector<uint8_t> cluster_keep_mask(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                                       const std::vector<Camera>& cameras, size_t keep_count,
+                                       const ClusterOptions& options = {}, const Log& log = {});
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,49 @@
+#pragma once
+// Cluster pruning with every stage's output saved in a work folder, so that any stage can be
+// re-run with new parameters from the saved outputs of the stages before it:
+//   regions/view_NNNN.npy  int32 [H, W]: region map of camera NNNN (-1: no region)
+//   regions/view_NNNN.png  the render it was made from (the view filter measures its edges)
+//   projection.npy         int16 (int32 if ids need it) [V, N]: region id per kept view and Gaussian
+//   projection_views.npy   int32 [V]: the camera index of each row of projection.npy
+//   clusters.npy           int32 [N]: cluster id per Gaussian
+//   cluster_scores.npy     float32 [C, 6]: spatial_raw, depth_raw, spatial, depth, MVR, G* per cluster
+// Every stage takes the scene sanitised (sanitize()), so that all files index the same Gaussians.
+#include <filesystem>
+#include <optional>
+
+#include "vksplat/io/write_mode.hpp"
+#include "vksplat/jobs/cluster_prune.hpp"
+
+namespace vksplat::jobs {
+
+struct ClusterStageIo {
+    std::filesystem::path work;
+    io::WriteMode mode = io::WriteMode::refuse_existing;
+    Log log;
+    prune::Progress progress;
+};
+
+// Stage 1. import_dir: region maps made elsewhere, per camera as view_NNNN.npy|.png or
+// <image name stem>.npy|.png; else the built-in segmentation.
+void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                   const ClusterOptions& options, const std::optional<std::filesystem::path>& import_dir,
+                   const ClusterStageIo& io);
+// Stages 2 and 3: the view filter over the saved maps and renders, then the projection.
+void project_stage(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                   const std::vector<Camera>& cameras, const ClusterOptions& options, const ClusterStageIo& io);
+// Stages 4 and 5.
+cluster::Clustering build_stage(const GaussianCloud& cloud, const ClusterOptions& options, const ClusterStageIo& io);
+// Stage 6.
+cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                                   const ClusterOptions& options, const ClusterStageIo& io);
+
+struct ClusterPruneResult {
+    size_t count_before = 0, count_after = 0;
+    size_t bytes_before = 0, bytes_after = 0;  // GaussianCloud::ply_bytes
+    size_t clusters = 0, clusters_dropped = 0;
+};
+// Stage 7: writes the pruned scene to `out`.
+ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options,
+                               const std::filesystem::path& out, const ClusterStageIo& io);
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,230 @@
+// Cluster pruning through a work folder: each stage reads what the stages before it saved.
+#include "vksplat/jobs/cluster_work_dir.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <regex>
+
+#include "vksplat/error.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/io/npy.hpp"
+#include "vksplat/io/ply.hpp"
+
+namespace vksplat::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+
+void say(const Log& log, const std::string& line) {
+    if (log) log(line);
+}
+
+std::string view_stem(size_t view) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "view_%04zu", view);
+    return name;
+}
+
+fs::path regions_dir(const ClusterStageIo& io) { return io.work / "regions"; }
+fs::path projection_file(const ClusterStageIo& io) { return io.work / "projection.npy"; }
+fs::path projection_views_file(const ClusterStageIo& io) { return io.work / "projection_views.npy"; }
+fs::path clusters_file(const ClusterStageIo& io) { return io.work / "clusters.npy"; }
+fs::path scores_file(const ClusterStageIo& io) { return io.work / "cluster_scores.npy"; }
+
+void refuse_existing(const fs::path& path, const ClusterStageIo& io) {
+    if (io.mode == io::WriteMode::refuse_existing && fs::exists(path))
+        throw InputError(path.string(), "already exists; not overwritten (use --force to replace it)");
+}
+
+void require(const fs::path& path, const char* stage) {
+    if (!fs::exists(path))
+        throw InputError(path.string(), std::string("not found: run `vksplat cluster ") + stage + "` first");
+}
+
+// The region map made elsewhere for a camera, by view number or by image name.
+cluster::RegionMap import_map(const fs::path& dir, size_t view, const Camera& camera) {
+    const std::string stems[] = {view_stem(view), fs::path(camera.name).stem().string()};
+    for (const auto& stem : stems)
+        for (const char* extension : {".npy", ".png"})
+            if (fs::exists(dir / (stem + extension))) return cluster::read_region_map(dir / (stem + extension));
+    throw InputError(dir.string(), "holds no region map for view " + std::to_string(view) + " (looked for " +
+                                       stems[0] + ".npy|.png and " + stems[1] + ".npy|.png)");
+}
+
+// The saved maps, with the filter's verdict on each under `options`.
+std::vector<RegionView> load_region_views(const ClusterOptions& options, const ClusterStageIo& io) {
+    const fs::path dir = regions_dir(io);
+    require(dir, "regions");
+    std::vector<RegionView> views;
+    const std::regex name("view_([0-9]+)\\.npy");
+    std::smatch match;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        const std::string file = entry.path().filename().string();
+        if (!std::regex_match(file, match, name)) continue;
+        RegionView view;
+        view.view = std::stoul(match[1].str());
+        view.map = cluster::read_region_map(entry.path());
+        const fs::path render = dir / (view_stem(view.view) + ".png");
+        require(render, "regions");
+        const io::ImageRGB image = io::read_image_rgb(render, options.settings.background);
+        if (image.width != view.map.width || image.height != view.map.height)
+            throw InputError(render.string(), "is not the size of " + entry.path().string());
+        view.quality = cluster::assess_view(view.map, image.rgb, options.filter);
+        views.push_back(std::move(view));
+    }
+    if (views.empty()) throw InputError(dir.string(), "holds no view_NNNN.npy region maps");
+    std::sort(views.begin(), views.end(), [](const RegionView& a, const RegionView& b) { return a.view < b.view; });
+    return views;
+}
+
+cluster::ViewLabels load_labels(size_t gaussians, const ClusterStageIo& io, std::vector<size_t>* views) {
+    require(projection_file(io), "project");
+    const io::NpyArray array = io::read_npy(projection_file(io));
+    if (array.shape.size() != 2 || array.shape[1] != gaussians)
+        throw InputError(projection_file(io).string(), "is not [views, " + std::to_string(gaussians) +
+                                                           "] (made for another scene?)");
+    cluster::ViewLabels labels;
+    labels.views = array.shape[0];
+    labels.gaussians = gaussians;
+    if (array.dtype == io::NpyDtype::int16) {
+        const auto values = array.values<int16_t>();
+        labels.ids.assign(values.begin(), values.end());
+    } else {
+        labels.ids = array.values<int32_t>();
+    }
+    if (views) {
+        require(projection_views_file(io), "project");
+        const auto ids = io::read_npy(projection_views_file(io)).values<int32_t>();
+        if (ids.size() != labels.views)
+            throw InputError(projection_views_file(io).string(), "does not match projection.npy");
+        views->assign(ids.begin(), ids.end());
+    }
+    return labels;
+}
+
+std::vector<int32_t> load_clusters(size_t gaussians, const ClusterStageIo& io) {
+    require(clusters_file(io), "build");
+    auto ids = io::read_npy(clusters_file(io)).values<int32_t>();
+    if (ids.size() != gaussians)
+        throw InputError(clusters_file(io).string(), "holds " + std::to_string(ids.size()) + " ids, the scene has " +
+                                                         std::to_string(gaussians) + " Gaussians");
+    return ids;
+}
+
+}  // namespace
+
+void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                   const ClusterOptions& options, const std::optional<fs::path>& import_dir, const ClusterStageIo& io) {
+    const fs::path dir = regions_dir(io);
+    fs::create_directories(dir);
+    for (size_t view : region_views(cameras.size(), options)) refuse_existing(dir / (view_stem(view) + ".npy"), io);
+    if (import_dir && !fs::is_directory(*import_dir)) throw InputError(import_dir->string(), "is not a folder");
+    RegionSource source;
+    if (import_dir) source = [&](size_t view) { return import_map(*import_dir, view, cameras[view]); };
+    const auto save = [&](const RegionView& view, const RenderOutput& image) {
+        cluster::write_region_map(dir / (view_stem(view.view) + ".npy"), view.map, io.mode);
+        io::write_png_rgb(dir / (view_stem(view.view) + ".png"), image.width, image.height, image.rgb.data(), 8, io.mode);
+    };
+    const auto views = make_region_maps(renderer, cloud, cameras, options, source, save, io.progress);
+    size_t regions = 0;
+    for (const auto& view : views) regions += view.quality.regions;
+    say(io.log, "region maps: " + std::to_string(views.size()) + " views, " +
+                    std::to_string(views.empty() ? 0 : regions / views.size()) + " regions per view on average, in " +
+                    dir.string());
+}
+
+void project_stage(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                   const std::vector<Camera>& cameras, const ClusterOptions& options, const ClusterStageIo& io) {
+    refuse_existing(projection_file(io), io);
+    refuse_existing(projection_views_file(io), io);
+    const std::vector<RegionView> regions = load_region_views(options, io);
+    std::vector<const RegionView*> used;
+    std::vector<int32_t> view_ids;
+    for (size_t k : filter_views(regions, options, io.log)) {
+        used.push_back(&regions[k]);
+        view_ids.push_back(int32_t(regions[k].view));
+    }
+    const cluster::ViewLabels labels = project_views(renderer, context, cloud, cameras, used, options, io.progress);
+    const int32_t largest = labels.ids.empty() ? 0 : *std::max_element(labels.ids.begin(), labels.ids.end());
+    const std::vector<size_t> shape{labels.views, labels.gaussians};
+    if (largest <= INT16_MAX) {
+        const std::vector<int16_t> narrow(labels.ids.begin(), labels.ids.end());
+        io::write_npy(projection_file(io), narrow.data(), shape, io.mode);
+    } else {
+        io::write_npy(projection_file(io), labels.ids.data(), shape, io.mode);
+    }
+    io::write_npy(projection_views_file(io), view_ids.data(), {view_ids.size()}, io.mode);
+    const size_t seen = size_t(std::count_if(labels.ids.begin(), labels.ids.end(), [](int32_t id) { return id >= 0; }));
+    char line[160];
+    std::snprintf(line, sizeof(line), "projection (%s rule): %zu views x %zu Gaussians, %.1f%% of the entries in a region",
+                  cluster::to_string(options.projection.rule).c_str(), labels.views, labels.gaussians,
+                  labels.ids.empty() ? 0.0 : 100.0 * double(seen) / double(labels.ids.size()));
+    say(io.log, line);
+}
+
+cluster::Clustering build_stage(const GaussianCloud& cloud, const ClusterOptions& options, const ClusterStageIo& io) {
+    refuse_existing(clusters_file(io), io);
+    const cluster::ViewLabels labels = load_labels(cloud.size(), io, nullptr);
+    cluster::Clustering clustering = cluster_gaussians(cloud, labels, options, io.log);
+    io::write_npy(clusters_file(io), clustering.cluster_of.data(), {clustering.cluster_of.size()}, io.mode);
+    return clustering;
+}
+
+cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                                   const ClusterOptions& options, const ClusterStageIo& io) {
+    refuse_existing(scores_file(io), io);
+    std::vector<size_t> views;
+    const cluster::ViewLabels labels = load_labels(cloud.size(), io, &views);
+    const std::vector<int32_t> cluster_of = load_clusters(cloud.size(), io);
+    std::vector<Camera> used;
+    for (size_t view : views) {
+        if (view >= cameras.size())
+            throw InputError(projection_views_file(io).string(), "names view " + std::to_string(view) + " of " +
+                                                                     std::to_string(cameras.size()) + " cameras");
+        used.push_back(cameras[view]);
+    }
+    cluster::ClusterScores scores = cluster::score_clusters(cloud.positions, cluster_of, labels, used, options.weights);
+    log_score_table(scores, io.log);
+    std::vector<float> table(scores.size() * 6);
+    for (size_t c = 0; c < scores.size(); ++c) {
+        const double row[6] = {scores.spatial_raw[c], scores.depth_raw[c], scores.spatial[c],
+                               scores.depth[c],       scores.mvr[c],       scores.score[c]};
+        for (int k = 0; k < 6; ++k) table[c * 6 + k] = float(row[k]);
+    }
+    io::write_npy(scores_file(io), table.data(), {scores.size(), 6}, io.mode);
+    return scores;
+}
+
+ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options, const fs::path& out,
+                               const ClusterStageIo& io) {
+    refuse_existing(out, io);
+    const std::vector<int32_t> cluster_of = load_clusters(cloud.size(), io);
+    require(scores_file(io), "score");
+    const io::NpyArray table = io::read_npy(scores_file(io));
+    const auto values = table.values<float>();
+    if (table.shape.size() != 2 || table.shape[1] != 6)
+        throw InputError(scores_file(io).string(), "is not a [clusters, 6] table");
+    cluster::ClusterScores scores;
+    scores.score.resize(table.shape[0]);
+    for (size_t c = 0; c < scores.score.size(); ++c) scores.score[c] = values[c * 6 + 5];
+    for (int32_t id : cluster_of)
+        if (id < 0 || size_t(id) >= scores.size())
+            throw InputError(clusters_file(io).string(), "names cluster " + std::to_string(id) + ", but " +
+                                                             scores_file(io).string() + " scores " +
+                                                             std::to_string(scores.size()) + " (re-run score)");
+    const cluster::ClusterSelection selection =
+        cluster::select_clusters(scores, cluster_of, options.score_threshold, options.prune_ratio);
+    for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
+    const GaussianCloud pruned = cloud.subset(selection.keep);
+    io::write_ply(pruned, out, io.mode);
+    ClusterPruneResult result;
+    result.count_before = cloud.size();
+    result.count_after = pruned.size();
+    result.bytes_before = cloud.ply_bytes();
+    result.bytes_after = pruned.ply_bytes();
+    result.clusters = scores.size();
+    result.clusters_dropped = selection.clusters_dropped;
+    return result;
+}
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,171 @@
+// Cluster pruning end to end on a generated scene whose subject and clutter are known: a ball of
+// small Gaussians (red lower half, blue upper half) and faint floaters around it, seen by an orbit of cameras.
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <filesystem>
+#include <random>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "vksplat/demo_scene.hpp"
+#include "vksplat/io/npy.hpp"
+#include "vksplat/io/ply.hpp"
+#include "vksplat/jobs/cluster_work_dir.hpp"
+
+namespace vksplat::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr size_t kSubject = 2000;
+constexpr size_t kFloaters = 60;
+
+// Gaussians 0..kSubject-1 are the ball (z < 0 red, z >= 0 blue: every orbit camera sees both
+// halves), the rest floaters.
+GaussianCloud ball_and_floaters() {
+    GaussianCloud cloud;
+    cloud.sh_degree = 0;
+    std::mt19937 random(3);
+    std::normal_distribution<double> normal;
+    for (size_t i = 0; i < kSubject; ++i) {
+        glm::dvec3 p{normal(random), normal(random), normal(random)};
+        p *= 0.6 / glm::length(p);  // on the sphere of radius 0.6
+        const glm::dvec3 colour = p.z < 0 ? glm::dvec3{0.9, 0.1, 0.1} : glm::dvec3{0.1, 0.2, 0.9};
+        add_splat(cloud, {.position = p, .scale = {0.03, 0.03, 0.03}, .opacity = 0.95, .color = colour});
+    }
+    std::uniform_real_distribution<double> angle(0.0, 6.283), height(-1.0, 1.0), radius(1.6, 2.4);
+    for (size_t i = 0; i < kFloaters; ++i) {
+        const double a = angle(random), r = radius(random);
+        add_splat(cloud, {.position = {r * std::cos(a), r * std::sin(a), height(random)},
+                          .scale = {0.15, 0.15, 0.15},
+                          .opacity = 0.08,
+                          .color = {0.7, 0.7, 0.7}});
+    }
+    return cloud;
+}
+
+class ClusterPrune : public GpuTest {
+protected:
+    void SetUp() override {
+        dir = fs::temp_directory_path() / ("vksplat_cluster_" + std::to_string(::getpid()) + "_" +
+                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+        options.max_views = 8;
+        options.delta = 0.2;
+        // Small pictures: a finer scale than the default, made for pictures of a few hundred pixels.
+        options.segmentation.k = 150;
+        log = [this](const std::string& line) { lines += line + "\n"; };
+    }
+    void TearDown() override {
+        fs::remove_all(dir);
+        GpuTest::TearDown();
+    }
+    fs::path dir;
+    GaussianCloud cloud = ball_and_floaters();
+    std::vector<Camera> cameras = make_orbit_cameras(8, 128, 96, 4.0, 20.0);
+    jobs::ClusterOptions options;
+    std::string lines;
+    jobs::Log log;
+};
+
+TEST_F(ClusterPrune, KeepsTheSubjectAndDropsTheFloatersFirst) {
+    Renderer renderer(context());
+    const auto keep = jobs::cluster_keep_mask(renderer, context(), cloud, cameras, kSubject, options, log);
+    ASSERT_EQ(keep.size(), cloud.size());
+    size_t subject_kept = 0, floaters_kept = 0;
+    for (size_t i = 0; i < keep.size(); ++i) (i < kSubject ? subject_kept : floaters_kept) += keep[i];
+    EXPECT_EQ(subject_kept + floaters_kept, kSubject);
+    EXPECT_LE(floaters_kept, kFloaters / 10) << lines;
+    EXPECT_NE(lines.find("views: kept"), std::string::npos) << lines;
+}
+
+TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
+    Renderer renderer(context());
+    jobs::ClusterStageIo io{dir, io::WriteMode::refuse_existing, log, {}};
+    jobs::regions_stage(renderer, cloud, cameras, options, std::nullopt, io);
+    EXPECT_TRUE(fs::exists(dir / "regions" / "view_0000.npy"));
+    EXPECT_TRUE(fs::exists(dir / "regions" / "view_0007.png"));
+    jobs::project_stage(renderer, context(), cloud, cameras, options, io);
+    const io::NpyArray projection = io::read_npy(dir / "projection.npy");
+    EXPECT_EQ(projection.shape[1], cloud.size());
+    const cluster::Clustering clustering = jobs::build_stage(cloud, options, io);
+    // The semantic constraint keeps the ball's halves apart: no cluster of several Gaussians
+    // spans both colours.
+    std::map<int32_t, std::pair<size_t, size_t>> halves;  // cluster -> (red, blue) members
+    for (size_t i = 0; i < kSubject; ++i)
+        (cloud.positions[i * 3 + 2] < 0 ? halves[clustering.cluster_of[i]].first : halves[clustering.cluster_of[i]].second)++;
+    size_t mixed = 0;
+    for (const auto& [id, counts] : halves) mixed += std::min(counts.first, counts.second);
+    EXPECT_LT(mixed, kSubject / 20) << lines;
+    EXPECT_LT(clustering.summary.clusters, kSubject / 2) << lines;
+
+    const cluster::ClusterScores first = jobs::score_stage(cloud, cameras, options, io);
+    EXPECT_NE(lines.find("percentile"), std::string::npos);
+    // A stage's output is not replaced unasked; with overwrite, new weights give new scores.
+    EXPECT_THROW(jobs::score_stage(cloud, cameras, options, io), InputError);
+    io.mode = io::WriteMode::overwrite;
+    options.weights.gamma = 0.0;
+    const cluster::ClusterScores second = jobs::score_stage(cloud, cameras, options, io);
+    EXPECT_EQ(first.size(), second.size());
+    EXPECT_NE(first.score, second.score);
+    options.weights.gamma = 1.0;
+    jobs::score_stage(cloud, cameras, options, io);
+
+    options.prune_ratio = 0.5;
+    const auto result = jobs::prune_stage(cloud, options, dir / "out.ply", io);
+    EXPECT_EQ(result.count_before, cloud.size());
+    EXPECT_GT(result.count_after, 0u);
+    EXPECT_LT(result.count_after, cloud.size());
+    EXPECT_EQ(io::read_ply(dir / "out.ply").size(), result.count_after);
+    // A later stage without its inputs says which stage to run.
+    fs::remove(dir / "clusters.npy");
+    try {
+        jobs::score_stage(cloud, cameras, options, io);
+        FAIL() << "expected InputError";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("vksplat cluster build"), std::string::npos) << e.what();
+    }
+}
+
+TEST_F(ClusterPrune, NoiseRegionMapsWarnAndStillGiveAScene) {
+    Renderer renderer(context());
+    const fs::path noise = dir / "noise";
+    fs::create_directories(noise);
+    std::mt19937 random(1);
+    for (size_t v = 0; v < cameras.size(); ++v) {
+        std::vector<int32_t> ids(128 * 96);
+        for (auto& id : ids) id = int32_t(random() % 3000);
+        char name[32];
+        std::snprintf(name, sizeof(name), "view_%04zu.npy", v);
+        io::write_npy(noise / name, ids.data(), {96, 128});
+    }
+    jobs::ClusterStageIo io{dir / "work", io::WriteMode::refuse_existing, log, {}};
+    jobs::regions_stage(renderer, cloud, cameras, options, noise, io);
+    jobs::project_stage(renderer, context(), cloud, cameras, options, io);
+    EXPECT_NE(lines.find("warning: the view filter dropped all 8 views"), std::string::npos) << lines;
+    EXPECT_NE(lines.find("regions (maximum 1000): noise rather than parts"), std::string::npos) << lines;
+    jobs::build_stage(cloud, options, io);
+    EXPECT_NE(lines.find("Gaussians are their own cluster"), std::string::npos) << lines;
+    jobs::score_stage(cloud, cameras, options, io);
+    const auto result = jobs::prune_stage(cloud, options, dir / "out.ply", io);
+    EXPECT_GT(result.count_after, 0u);
+}
+
+TEST_F(ClusterPrune, AViewWithoutTheSubjectIsDropped) {
+    Renderer renderer(context());
+    // The last camera looks away from the ball.
+    cameras.push_back(Camera::look_at({0.0, 0.0, 4.0}, {0.0, 0.0, 20.0}, {0.0, 1.0, 0.0}, 128, 96, 80.0, 80.0));
+    jobs::ClusterStageIo io{dir, io::WriteMode::refuse_existing, log, {}};
+    options.max_views = 9;
+    jobs::regions_stage(renderer, cloud, cameras, options, std::nullopt, io);
+    jobs::project_stage(renderer, context(), cloud, cameras, options, io);
+    EXPECT_NE(lines.find("view 8 dropped: no subject"), std::string::npos) << lines;
+    const auto used = io::read_npy(dir / "projection_views.npy").values<int32_t>();
+    EXPECT_EQ(std::count(used.begin(), used.end(), 8), 0);
+}
+
+}  // namespace
+}  // namespace vksplat::test

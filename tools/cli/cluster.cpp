@@ -1,0 +1,227 @@
+// vksplat cluster: saliency-aware cluster pruning, one subcommand per stage plus `run` for all.
+// Each stage reads what the stages before it saved in --work (see jobs/cluster_work_dir.hpp).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <memory>
+#include <optional>
+
+#include "commands.hpp"
+#include "progress.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/ply.hpp"
+#include "vksplat/jobs/cluster_work_dir.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
+#include "vksplat/jobs/subject_quality.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+
+namespace vksplat::cli {
+namespace {
+
+struct ClusterArgs {
+    GpuOptions gpu;
+    std::string scene, cameras, work, out, import_dir, images, test_views;
+    std::string render_views, keep_views, occlusion = "depth", delta = "0.01";
+    std::vector<float> background{0, 0, 0};
+    std::optional<double> score_threshold;
+    bool force = false;
+    jobs::ClusterOptions options;
+};
+
+enum Stage : unsigned { kRegions = 1, kProject = 2, kBuild = 4, kScore = 8, kPrune = 16 };
+
+void add_common(CLI::App& c, ClusterArgs& a) {
+    c.add_option("scene", a.scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    c.add_option("--cameras", a.cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
+        ->required()
+        ->check(CLI::ExistingPath);
+    c.add_option("--work", a.work, "folder for the stages' outputs")->required();
+    c.add_option("--background", a.background, "background colour R,G,B in [0,1]")->delimiter(',')->expected(3);
+    c.add_flag("--force", a.force, "overwrite existing outputs");
+}
+
+void add_regions(CLI::App& c, ClusterArgs& a) {
+    auto& o = a.options;
+    c.add_option("--max-views", o.max_views, "render at most this many training views, evenly spread");
+    c.add_option("--render-views", a.render_views, "views to render, e.g. 13-99 (default: the training views)");
+    c.add_option("--resolution-scale", o.resolution_scale, "render and segment at this fraction of the camera size");
+    c.add_option("--seg-sigma", o.segmentation.sigma, "graph segmentation: pre-smoothing in pixels");
+    c.add_option("--seg-k", o.segmentation.k, "graph segmentation: scale (larger: larger regions)");
+    c.add_option("--seg-min-size", o.segmentation.min_size_fraction, "smallest region, as a fraction of the image");
+    c.add_option("--min-alpha", o.segmentation.min_alpha, "pixels with rendered alpha below this carry no region");
+    c.add_option("--import", a.import_dir,
+                 "use region maps made elsewhere: view_NNNN or <image stem> .npy (int32 [H,W] or uint8 masks "
+                 "[K,H,W]) or .png (16-bit labels, 0 = none)")
+        ->check(CLI::ExistingDirectory);
+}
+
+void add_project(CLI::App& c, ClusterArgs& a) {
+    auto& o = a.options;
+    c.add_option("--views", a.keep_views, "use exactly these views instead of the view filter's choice");
+    c.add_option("--max-largest-fraction", o.filter.max_largest_fraction, "filter: largest region's share at most");
+    c.add_option("--max-regions", o.filter.max_regions, "filter: regions per view at most");
+    c.add_option("--min-edge-alignment", o.filter.min_edge_alignment, "filter: border/image gradient ratio at least");
+    c.add_option("--min-labelled-fraction", o.filter.min_labelled_fraction, "filter: share of pixels in a region");
+    c.add_option("--occlusion", a.occlusion, "occlusion rule: depth (nearest centre) or blend (alpha*T at centre)")
+        ->check(CLI::IsMember({"depth", "blend"}));
+    c.add_option("--min-weight", o.projection.min_weight, "blend rule: smallest alpha*T at the centre that counts");
+}
+
+void add_build(CLI::App& c, ClusterArgs& a) {
+    auto& o = a.options;
+    c.add_option("--delta-dist", a.delta, "neighbour radius in scene units, or auto");
+    c.add_option("--max-neighbours", o.max_neighbours, "nearest neighbours per Gaussian within the radius");
+    c.add_option("--semantic-tol", o.merge.semantic_tol, "largest share of common views whose regions may differ");
+    c.add_option("--min-common-views", o.merge.min_common_views, "views that must see both of a pair");
+}
+
+void add_score(CLI::App& c, ClusterArgs& a) {
+    auto& w = a.options.weights;
+    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G*");
+    c.add_option("--beta", w.beta, "weight of the depth variance in G*");
+    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G*");
+    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR");
+}
+
+void add_prune(CLI::App& c, ClusterArgs& a) {
+    auto* threshold = c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this");
+    c.add_option("--prune-ratio", a.options.prune_ratio, "else drop this fraction of the clusters, lowest G* first")
+        ->check(CLI::Range(0.0, 1.0))
+        ->excludes(threshold);
+    c.add_option("-o,--out", a.out, "pruned scene (.ply)")->required();
+    c.add_option("--images", a.images, "photos: measure the test views against them too")->check(CLI::ExistingDirectory);
+    c.add_option("--test-views", a.test_views, "views to measure on (default: the first 13)");
+}
+
+void log_line(const std::string& line) {
+    std::printf("%s\n", line.c_str());
+    std::fflush(stdout);
+}
+
+void print_scores(const char* what, const jobs::SubjectScores& s) {
+    std::printf("  %-22s PSNR %7.3f dB  SSIM %.4f   subject PSNR %7.3f dB  SSIM %.4f\n", what, s.psnr, s.ssim,
+                s.subject_psnr, s.subject_ssim);
+}
+
+int run_stages(ClusterArgs& args, unsigned stages) {
+    std::vector<std::string> warnings;
+    GaussianCloud cloud = io::read_ply(args.scene);
+    const SanitizeReport report = sanitize(cloud);
+    if (report.changed()) std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), report.summary().c_str());
+    const auto cameras = io::read_cameras(args.cameras, &warnings);
+    for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+
+    auto& options = args.options;
+    options.settings.background = {args.background[0], args.background[1], args.background[2]};
+    if (!args.render_views.empty()) options.views = jobs::parse_view_list(args.render_views, cameras.size());
+    if (!args.keep_views.empty()) options.keep_views = jobs::parse_view_list(args.keep_views, cameras.size());
+    options.projection.rule = cluster::parse_occlusion_rule(args.occlusion);
+    if (args.delta == "auto")
+        options.delta.reset();
+    else
+        try {
+            options.delta = std::stod(args.delta);
+        } catch (const std::exception&) {
+            throw InputError("--delta-dist " + args.delta, "expected a distance or auto");
+        }
+    options.score_threshold = args.score_threshold;
+    jobs::ClusterStageIo io{args.work, args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing,
+                            log_line, {}};
+    std::filesystem::create_directories(args.work);
+
+    std::unique_ptr<gpu::Context> context;
+    std::unique_ptr<Renderer> renderer;
+    if (stages & (kRegions | kProject) || (stages & kPrune && !args.images.empty())) {
+        context = std::make_unique<gpu::Context>(args.gpu.context_options());
+        renderer = std::make_unique<Renderer>(*context);
+    }
+    const auto timed = [](const char* stage, auto&& work) {
+        const auto start = std::chrono::steady_clock::now();
+        work();
+        std::printf("[%s] %.1f s\n", stage,
+                    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+        std::fflush(stdout);
+    };
+    if (stages & kRegions)
+        timed("regions", [&] {
+            ProgressLine line("region maps");
+            io.progress = [&](size_t done, size_t total) { line.update(done, total); };
+            std::optional<std::filesystem::path> import;
+            if (!args.import_dir.empty()) import = args.import_dir;
+            jobs::regions_stage(*renderer, cloud, cameras, options, import, io);
+        });
+    if (stages & kProject)
+        timed("project", [&] {
+            ProgressLine line("projected views");
+            io.progress = [&](size_t done, size_t total) { line.update(done, total); };
+            jobs::project_stage(*renderer, *context, cloud, cameras, options, io);
+        });
+    if (stages & kBuild) timed("build", [&] { jobs::build_stage(cloud, options, io); });
+    if (stages & kScore) timed("score", [&] { jobs::score_stage(cloud, cameras, options, io); });
+    if (stages & kPrune) {
+        jobs::ClusterPruneResult result;
+        timed("prune", [&] { result = jobs::prune_stage(cloud, options, args.out, io); });
+        std::printf("clusters: %zu, dropped %zu\nGaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n",
+                    result.clusters, result.clusters_dropped, result.count_before, result.count_after,
+                    result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0,
+                    result.bytes_before, result.bytes_after, args.out.c_str());
+        if (result.count_after == 0) std::printf("warning: the pruned scene is empty\n");
+        if (!args.images.empty()) {
+            const auto views = args.test_views.empty() ? jobs::default_test_views(cameras.size())
+                                                       : jobs::parse_view_list(args.test_views, cameras.size());
+            std::vector<Camera> test;
+            for (size_t v : views) test.push_back(cameras[v]);
+            const GaussianCloud pruned = io::read_ply(args.out);
+            const auto q = jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings);
+            std::printf("test views (%zu), subject region %.1f%% of the pixels:\n", test.size(), 100 * q.subject_fraction);
+            print_scores("unpruned vs photos", *q.unpruned_vs_photos);
+            print_scores("pruned vs photos", *q.pruned_vs_photos);
+            print_scores("pruned vs unpruned", q.pruned_vs_unpruned);
+        }
+    }
+    return 0;
+}
+
+CLI::App* add_stage(CLI::App& cluster, Action& action, const char* name, const char* help, unsigned stages,
+                    const char* example) {
+    auto* command = cluster.add_subcommand(name, help);
+    command->footer(std::string("Example:\n  ") + example);
+    auto args = std::make_shared<ClusterArgs>();
+    add_common(*command, *args);
+    if (stages & kRegions) add_regions(*command, *args);
+    if (stages & kProject) add_project(*command, *args);
+    if (stages & kBuild) add_build(*command, *args);
+    if (stages & kScore) add_score(*command, *args);
+    if (stages & kPrune) add_prune(*command, *args);
+    if (stages & (kRegions | kProject) || stages & kPrune) add_gpu_options(*command, args->gpu);
+    command->callback([&action, args, stages] { action = [args, stages] { return run_stages(*args, stages); }; });
+    return command;
+}
+
+}  // namespace
+
+void register_cluster(CLI::App& app, Action& action) {
+    auto* cluster = app.add_subcommand("cluster", "saliency-aware cluster pruning, stage by stage or all at once");
+    cluster->require_subcommand(1);
+    cluster->footer(
+        "Stages: regions (render and segment views) -> project (view filter, region id per Gaussian) -> build\n"
+        "(neighbours + union-find) -> score (G* per cluster) -> prune (write the scene). Each reads the\n"
+        "outputs the earlier ones left in --work, so a stage can be re-run with new parameters alone.\n"
+        "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
+    const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
+    add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,
+              "vksplat cluster regions scene.ply --cameras cameras.json --work w --max-views 30");
+    add_stage(*cluster, action, "project", "filter the views, then find each Gaussian's region in each", kProject,
+              "vksplat cluster project scene.ply --cameras cameras.json --work w --occlusion blend");
+    add_stage(*cluster, action, "build", "cluster neighbouring Gaussians whose regions agree", kBuild,
+              "vksplat cluster build scene.ply --cameras cameras.json --work w --delta-dist auto");
+    add_stage(*cluster, action, "score", "score every cluster (G*) and print the percentiles", kScore,
+              "vksplat cluster score scene.ply --cameras cameras.json --work w --alpha 0.2");
+    add_stage(*cluster, action, "prune", "drop the clusters of lowest G* and write the scene", kPrune,
+              "vksplat cluster prune scene.ply --cameras cameras.json --work w --prune-ratio 0.5 -o out.ply");
+    add_stage(*cluster, action, "run", "all stages", all,
+              "vksplat cluster run scene.ply --cameras cameras.json --work w --delta-dist auto -o out.ply");
+}
+
+}  // namespace vksplat::cli
