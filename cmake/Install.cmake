@@ -12,6 +12,9 @@ if(TARGET vksplat_cli)
 endif()
 install(EXPORT vksplatTargets NAMESPACE vksplat:: DESTINATION ${VKSPLAT_CMAKE_DIR})
 
+# The OpenCV modules the library links (opencv_core -> core, ...), for find_dependency.
+string(REPLACE "opencv_" "" VKSPLAT_OPENCV_COMPONENTS "${OpenCV_LIBS}")
+string(REPLACE ";" " " VKSPLAT_OPENCV_COMPONENTS "${VKSPLAT_OPENCV_COMPONENTS}")
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/vksplatConfig.cmake.in
                               ${PROJECT_BINARY_DIR}/vksplatConfig.cmake INSTALL_DESTINATION ${VKSPLAT_CMAKE_DIR})
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/vksplatConfigVersion.cmake COMPATIBILITY SameMinorVersion)
