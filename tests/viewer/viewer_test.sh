@@ -23,17 +23,28 @@ cat >"$work/cameras.json" <<'JSON'
   "rotation": [[0, 0, -1], [1, 0, 0], [0, -1, 0]], "fx": 70, "fy": 70}]
 JSON
 
-# Xvfb picks a free display itself and writes its number to fd 3.
-Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$work/display" 2>"$work/xvfb.log" &
-xvfb_pid=$!
+# Xvfb picks a free display itself and writes its number to fd 3. It is started again if it does not
+# come up answering (another X server may take the same number at the same moment).
+xvfb_pid=
 viewer_pid=
 cleanup() {
   [ -n "$viewer_pid" ] && kill "$viewer_pid" 2>/dev/null
-  kill "$xvfb_pid" 2>/dev/null
+  [ -n "$xvfb_pid" ] && kill "$xvfb_pid" 2>/dev/null
 }
 trap cleanup EXIT
-for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
-export DISPLAY=:$(cat "$work/display")
+for attempt in 1 2 3; do
+  rm -f "$work/display"
+  Xvfb -displayfd 3 -screen 0 640x480x24 -nolisten tcp 3>"$work/display" 2>>"$work/xvfb.log" &
+  xvfb_pid=$!
+  for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
+  export DISPLAY=:$(cat "$work/display" 2>/dev/null)
+  sleep 0.5
+  kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1 && break
+  echo "Xvfb attempt $attempt did not come up on '$DISPLAY'"
+  kill "$xvfb_pid" 2>/dev/null
+  xvfb_pid=
+done
+[ -n "$xvfb_pid" ] || { echo "FAILED: no virtual display"; cat "$work/xvfb.log"; exit 1; }
 
 "$vksplat" view "$work/demo/demo.ply" --cameras "$work/cameras.json" --size 320x240 >"$work/view.log" 2>&1 &
 viewer_pid=$!
@@ -67,7 +78,8 @@ if wait_title "ms \(.*camera 1/2 \(top\)"; then
   expect_mean "$work/top.png" 30x30+0+0 "<" 0.02 "background in the corner (top view)"
   expect_mean "$work/top.png" 30x30+290+210 "<" 0.02 "background in the corner (top view)"
 else
-  fail "no first frame from the top camera; title: $(xdotool getwindowname "$window" 2>/dev/null)"
+  echo "FAILED: no first frame from the top camera; title: $(xdotool getwindowname "$window" 2>/dev/null)"
+  exit 1  # nothing else can be checked
 fi
 
 xdotool key --window "$window" n
