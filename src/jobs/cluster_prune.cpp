@@ -156,6 +156,11 @@ cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster:
         say(log, format("warning: delta %.4g is below half the median nearest-neighbour distance %.4g: most "
                         "Gaussians will have no neighbour and stay single",
                         double(neighbours.delta), nearest.median));
+    if (nearest.sampled > 0 && neighbours.delta > 10.0 * nearest.p95)
+        say(log, format("warning: delta %.4g is over 10 times the 95th-percentile nearest-neighbour distance %.4g: "
+                        "each Gaussian pairs with its %zu nearest only, and clusters grow by chaining across the "
+                        "scene wherever the region maps let them",
+                        double(neighbours.delta), nearest.p95, neighbours.max_neighbours));
     cluster::Clustering clustering = cluster::build_clusters(positions, labels, neighbours, options.merge);
     const cluster::ClusterSummary& s = clustering.summary;
     say(log, format("clusters: %zu from %zu Gaussians (%zu singletons, largest %zu); %zu neighbour pairs, %zu merges",
