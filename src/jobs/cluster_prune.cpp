@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
@@ -155,6 +156,11 @@ cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster:
         say(log, format("warning: delta %.4g is below half the median nearest-neighbour distance %.4g: most "
                         "Gaussians will have no neighbour and stay single",
                         double(neighbours.delta), nearest.median));
+    if (nearest.sampled > 0 && neighbours.delta > 10.0 * nearest.p95)
+        say(log, format("warning: delta %.4g is over 10 times the 95th-percentile nearest-neighbour distance %.4g: "
+                        "each Gaussian pairs with its %zu nearest only, and clusters grow by chaining across the "
+                        "scene wherever the region maps let them",
+                        double(neighbours.delta), nearest.p95, neighbours.max_neighbours));
     cluster::Clustering clustering = cluster::build_clusters(positions, labels, neighbours, options.merge);
     const cluster::ClusterSummary& s = clustering.summary;
     say(log, format("clusters: %zu from %zu Gaussians (%zu singletons, largest %zu); %zu neighbour pairs, %zu merges",
@@ -178,9 +184,9 @@ void log_score_table(const cluster::ClusterScores& scores, const Log& log) {
                         mvr[k], total[k]));
 }
 
-std::vector<uint8_t> cluster_keep_mask(Renderer& renderer, const gpu::Context& context, const GaussianCloud& input,
-                                       const std::vector<Camera>& cameras, size_t keep_count,
-                                       const ClusterOptions& options, const Log& log) {
+std::vector<float> cluster_gaussian_scores(Renderer& renderer, const gpu::Context& context, const GaussianCloud& input,
+                                           const std::vector<Camera>& cameras, const ClusterOptions& options,
+                                           const Log& log) {
     GaussianCloud cloud = input;
     const SanitizeReport report = sanitize(cloud);
     const std::vector<RegionView> regions = make_region_maps(renderer, cloud, cameras, options);
@@ -192,12 +198,19 @@ std::vector<uint8_t> cluster_keep_mask(Renderer& renderer, const gpu::Context& c
     for (const RegionView* view : used) used_cameras.push_back(cameras[view->view]);
     const cluster::ClusterScores scores =
         cluster::score_clusters(cloud.positions, clustering.cluster_of, labels, used_cameras, options.weights);
-    const std::vector<float> ranks = cluster::gaussian_scores(scores, clustering.cluster_of);
-    const prune::KeepMask kept = prune::select_count(ranks, keep_count, prune::keep_all(cloud.size()));
-    if (report.kept_indices.empty()) return kept;
-    std::vector<uint8_t> mask(input.size(), 0);  // Gaussians sanitising dropped are not kept
-    for (size_t i = 0; i < kept.size(); ++i) mask[report.kept_indices[i]] = kept[i];
-    return mask;
+    log_score_table(scores, log);
+    std::vector<float> ranks = cluster::gaussian_scores(scores, clustering.cluster_of);
+    if (report.kept_indices.empty()) return ranks;
+    std::vector<float> out(input.size(), -std::numeric_limits<float>::infinity());
+    for (size_t i = 0; i < ranks.size(); ++i) out[report.kept_indices[i]] = ranks[i];
+    return out;
+}
+
+std::vector<uint8_t> cluster_keep_mask(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                                       const std::vector<Camera>& cameras, size_t keep_count,
+                                       const ClusterOptions& options, const Log& log) {
+    const std::vector<float> scores = cluster_gaussian_scores(renderer, context, cloud, cameras, options, log);
+    return prune::select_count(scores, keep_count, prune::keep_all(cloud.size()));
 }
 
 }  // namespace vksplat::jobs

@@ -87,6 +87,27 @@ expect sweep 0 "wrote $work/sweep/report.html" -- "$vksplat" sweep "$work/demo/d
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: sweep outputs missing"; }
 expect sweep-refuses-overwrite 2 "sweep.csv: already exists" -- "$vksplat" sweep "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
+# Cluster pruning: all stages, a re-run of one stage from the saved outputs, and the refusals.
+cat >"$work/three.json" <<'JSON'
+[{"id": 0, "img_name": "a", "width": 80, "height": 60, "position": [0, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 70, "fy": 70},
+ {"id": 1, "img_name": "b", "width": 80, "height": 60, "position": [0.4, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 70, "fy": 70},
+ {"id": 2, "img_name": "c", "width": 80, "height": 60, "position": [0, 0.4, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 70, "fy": 70}]
+JSON
+expect cluster-run 0 "Gaussians: 38605 ->" -- "$vksplat" cluster run "$work/demo/demo.ply" --cameras "$work/three.json" \
+  --work "$work/cw" --delta-dist auto --seg-k 150 -o "$work/clustered.ply"
+expect cluster-refuses-overwrite 2 "cluster_scores.npy: already exists" -- "$vksplat" cluster score \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw"
+expect cluster-rescore 0 "percentile" -- "$vksplat" cluster score "$work/demo/demo.ply" --cameras "$work/three.json" \
+  --work "$work/cw" --gamma 0.5 --force
+expect cluster-reprune 0 "wrote $work/half_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.5 -o "$work/half_clusters.ply"
+expect cluster-needs-earlier-stage 2 "run \`vksplat cluster project\` first" -- "$vksplat" cluster build \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/empty_work"
+expect cluster-bad-delta 2 "--delta-dist x: expected a distance or auto" -- "$vksplat" cluster build \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw" --delta-dist x --force
 
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"

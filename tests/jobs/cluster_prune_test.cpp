@@ -54,6 +54,7 @@ protected:
         fs::remove_all(dir);
         fs::create_directories(dir);
         options.max_views = 8;
+        options.resolution_scale = 1.0;
         options.delta = 0.2;
         // Small pictures: a finer scale than the default, made for pictures of a few hundred pixels.
         options.segmentation.k = 150;

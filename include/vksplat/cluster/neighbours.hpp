@@ -3,11 +3,12 @@
 // handed over in batches, so memory stays bounded whatever delta is.
 //
 // Each centre is paired with at most max_neighbours of its nearest centres within delta; a pair
-// comes as (lower index, higher index), twice when each end is among the other's nearest. The cap is what keeps a large delta from costing
-// O(N^2) pairs: for the union-find that follows, a few nearest neighbours connect a dense
-// region as well as all of them do. Peak memory beyond the tree (about 16 bytes per centre):
-// batch_size * max_neighbours pairs (8 bytes each) plus the same number of search results
-// (8 bytes each), i.e. 16 * batch_size * max_neighbours bytes: 16 MiB at the defaults.
+// comes as (lower index, higher index), twice when each end is among the other's nearest. The
+// cap is what keeps a large delta from costing O(N^2) pairs and time: for the union-find that
+// follows, a few nearest neighbours connect a dense region as well as all of them do. Memory
+// does not grow with delta: beyond the tree (4 bytes of index per centre plus one node per 16
+// centres), a batch's pairs take at most 8 * batch_size * (max_neighbours + 1) bytes, 8.5 MiB at
+// the defaults.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
