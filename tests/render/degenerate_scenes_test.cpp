@@ -1,5 +1,5 @@
 // Scenes at the edges of what floats and the pipeline hold: far from the origin, scales from 1e-10
-// to 1e10, a hundred thousand Gaussians on one tile, every Gaussian at one depth, the camera inside
+// to 1e10, 60k Gaussians on one tile (100k off lavapipe), every Gaussian at one depth, the camera inside
 // a Gaussian, Gaussians exactly on the near plane. Each must render without NaN or infinity and
 // match the reference rasterizer (on the sanitised cloud, which is what the renderer draws) within
 // the tolerance stated per case. Each case also prints its time per frame on this device
@@ -133,12 +133,14 @@ TEST_F(DegenerateScenes, SixtyThousandGaussiansOnOneTile) {
     expect_sound("60k_on_one_tile", one_tile(camera, 60000), camera);
 }
 
-// KNOWN BUG, left for the renderer's owner: once one tile holds 65536 or more entries, the GPU
-// blends none of that tile's entries past depth rank ~65030 (the deepest ~500 of the first 65536,
-// and everything after), so the far end of the list is missing (alpha 0.10 low here). 65000
-// entries are exact; scenes of 70k spread over many tiles are exact; the radix sort alone sorts
-// these depth keys correctly. Enable once fixed.
-TEST_F(DegenerateScenes, DISABLED_HundredThousandGaussiansOnOneTile) {
+// A hundred thousand on one tile: one blend workgroup walks a list of 100k. Not on lavapipe, whose
+// llvmpipe backend ends every loop of a shader invocation once all its loops together have gone
+// round 65535 times (Mesa gallivm, LP_MAX_TGSI_LOOP_ITERATIONS): the blend then stops about 65030
+// entries into the list and the deepest splats are missing (alpha 0.10 short here). 60k, above,
+// stays inside that limit.
+TEST_F(DegenerateScenes, HundredThousandGaussiansOnOneTile) {
+    if (context().info().name.find("llvmpipe") != std::string::npos)
+        GTEST_SKIP() << "lavapipe cuts shader loops after 65535 iterations; see the comment above";
     const Camera camera = forward_camera(64, 48, 60);
     expect_sound("100k_on_one_tile", one_tile(camera, 100000), camera);
 }
