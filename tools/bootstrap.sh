@@ -17,6 +17,8 @@ packages=(
 [ "$mode" = test ] && packages+=(chromium)
 # ... and opens the viewer on a virtual display, sends it keys and takes screenshots.
 [ "$mode" = test ] && packages+=(xvfb xdotool imagemagick)
+# ... and runs the GPU tests under the Vulkan validation layer.
+[ "$mode" = test ] && packages+=(vulkan-validationlayers)
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 missing=()

@@ -268,6 +268,11 @@ std::string DeviceInfo::type_name() const {
     }
 }
 
+bool validation_layer_installed() {
+    ensure_loader();
+    return has_layer("VK_LAYER_KHRONOS_validation");
+}
+
 std::vector<DeviceInfo> list_devices() {
     InstanceHandle handle{create_instance(false, nullptr)};
     std::vector<DeviceInfo> infos;

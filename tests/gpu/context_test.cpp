@@ -82,6 +82,7 @@ TEST(CommandStream, FillAndCopyWithOffsetsInOneSubmission) {
     CommandStream stream(context);
     stream.begin();
     stream.fill(a, 7u);
+    stream.barrier();  // the second fill overwrites part of the first: write after write
     stream.fill(a, 9u, 100 * 4, 50 * 4);
     stream.fill(b, 0xffffffffu);
     stream.barrier();

@@ -3,6 +3,7 @@
 // is the slow part on lavapipe) and helpers to move uint arrays to and from device buffers.
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
+#include "support/gpu_fixture.hpp"
 
 #include <gtest/gtest.h>
 
@@ -13,10 +14,8 @@
 
 namespace vksplat::test {
 
-inline gpu::Context& shared_context() {
-    static std::unique_ptr<gpu::Context> context = std::make_unique<gpu::Context>(gpu::ContextOptions{});
-    return *context;
-}
+// The test binary's one context, checked by the validation layer when it is installed.
+inline gpu::Context& shared_context() { return shared_test_context(); }
 
 inline gpu::Buffer device_buffer(const gpu::Context& context, size_t elements, const char* name) {
     return gpu::Buffer(context, elements * sizeof(uint32_t), gpu::MemoryKind::device, name);

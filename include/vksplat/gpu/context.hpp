@@ -63,6 +63,10 @@ struct AdoptedDevice {
 // Every physical device, with whether vksplat can use it.
 std::vector<DeviceInfo> list_devices();
 
+// Whether VK_LAYER_KHRONOS_validation is installed, i.e. whether ContextOptions::validation can be
+// honoured (Debian: vulkan-validationlayers). Throws GpuError when there is no Vulkan loader.
+bool validation_layer_installed();
+
 class Context {
 public:
     // Creates and owns an instance and a device.
