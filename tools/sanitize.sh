@@ -2,8 +2,9 @@
 # Builds vksplat and its tests with ASan + UBSan in build-asan (VKSPLAT_ASAN_BUILD_DIR) and runs the
 # test suite there. Extra arguments go to ctest, e.g. `tools/sanitize.sh -E golden` to leave out the
 # real-scene golden renders, which take most of the time under the sanitizers.
-# Leak checking is on; tools/lsan_suppressions.txt names the leaks that belong to the Vulkan driver
-# (Mesa lavapipe / LLVM) rather than to vksplat.
+# Leak checking is off by default: lavapipe leaks a few MB at exit from code that vkDestroyInstance has
+# already unloaded, so LeakSanitizer can neither name nor suppress it. Set ASAN_OPTIONS=detect_leaks=1
+# to check the tests that use no GPU (e.g. `-L "io|scene|camera|fuzz"`).
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
 build=${VKSPLAT_ASAN_BUILD_DIR:-$root/build-asan}
@@ -13,7 +14,6 @@ cmake -S "$root" -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DVKSPLA
   -DVKSPLAT_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build "$build" -j"$jobs"
 
-export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=1:abort_on_error=1:strict_string_checks=1}
-export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$root/tools/lsan_suppressions.txt:print_suppressions=0}
+export ASAN_OPTIONS=${ASAN_OPTIONS:-detect_leaks=0:abort_on_error=1:strict_string_checks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 ctest --test-dir "$build" --output-on-failure -j"$jobs" --timeout 1800 "$@"

@@ -63,6 +63,15 @@ VKAPI_ATTR VkBool32 VKAPI_CALL on_validation_message(VkDebugUtilsMessageSeverity
     return VK_FALSE;
 }
 
+// volk's instance-level entry points are global and follow the instance loaded last, so once another
+// Context or list_devices() has made an instance (without debug utils), the global
+// vkDestroyDebugUtilsMessengerEXT is null or belongs to that one: look it up on our own instance.
+void destroy_messenger(VkInstance instance, VkDebugUtilsMessengerEXT messenger) {
+    const auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+        vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"));
+    if (destroy) destroy(instance, messenger, nullptr);
+}
+
 struct InstanceHandle {
     VkInstance instance = VK_NULL_HANDLE;
     ~InstanceHandle() {
@@ -322,7 +331,7 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         volkLoadDeviceTable(&d.vk, d.device);
         d.vk.vkGetDeviceQueue(d.device, d.queue_family, 0, &d.queue);
     } catch (...) {
-        if (d.messenger) vkDestroyDebugUtilsMessengerEXT(d.instance, d.messenger, nullptr);
+        if (d.messenger) destroy_messenger(d.instance, d.messenger);
         vkDestroyInstance(d.instance, nullptr);
         throw;
     }
@@ -373,7 +382,7 @@ Context::~Context() {
         d.vk.vkDeviceWaitIdle(d.device);
         d.vk.vkDestroyDevice(d.device, nullptr);
     }
-    if (d.messenger) vkDestroyDebugUtilsMessengerEXT(d.instance, d.messenger, nullptr);
+    if (d.messenger) destroy_messenger(d.instance, d.messenger);
     if (d.instance) vkDestroyInstance(d.instance, nullptr);
 }
 
