@@ -45,11 +45,12 @@ void print_view(const jobs::ViewBenchmark& v, const std::optional<jobs::DeviceRa
 }
 
 int run_bench(const BenchArgs& args) {
-    GaussianCloud cloud = io::read_ply(args.scene);
+    const GaussianCloud base = io::read_ply(args.scene);
+    GaussianCloud cloud = base;
     std::vector<Camera> cameras;
     if (!args.tiled.empty()) {
         const auto [nx, ny] = parse_grid(args.tiled);
-        cloud = tile_scene(cloud, nx, ny, kTiledBenchmarkSpacing);
+        cloud = tile_scene(base, nx, ny, kTiledBenchmarkSpacing);
         cameras.push_back(tiled_benchmark_camera());
     } else if (!args.cameras.empty()) {
         cameras = io::read_cameras(args.cameras);
@@ -107,7 +108,6 @@ int run_bench(const BenchArgs& args) {
             renderer, first, {{256, 256}, {512, 512}, {800, 800}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}},
             options);
         // Scene sizes on the tiled benchmark camera, from a thinned scene to 7 x 7 copies.
-        const GaussianCloud base = io::read_ply(args.scene);
         const uint64_t n = base.size();
         report.by_scene_size = jobs::benchmark_scene_sizes(
             renderer, base, {10'000, 30'000, 100'000, n, 4 * n, 9 * n, 16 * n, 25 * n, 49 * n},
