@@ -14,14 +14,6 @@
 #include "vksplat/error.hpp"
 
 namespace vksplat::cluster {
-namespace {
-
-template <size_t N>
-std::span<const uint32_t> words(const uint32_t (&spirv)[N]) {
-    return {spirv, N};
-}
-
-}  // namespace
 
 OcclusionRule parse_occlusion_rule(const std::string& name) {
     if (name == "depth") return OcclusionRule::depth;
@@ -39,8 +31,8 @@ struct Projector::Impl {
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          nearest_depth(c, words(cluster_nearest_depth_spv), sizeof(NearestDepthPush), {}, "cluster_nearest_depth"),
-          project(c, words(cluster_project_spv), sizeof(ProjectPush), {}, "cluster_project"),
+          nearest_depth(c, gpu::spirv_words(cluster_nearest_depth_spv), sizeof(NearestDepthPush), {}, "cluster_nearest_depth"),
+          project(c, gpu::spirv_words(cluster_project_spv), sizeof(ProjectPush), {}, "cluster_project"),
           stream(c) {}
 };
 

@@ -12,6 +12,12 @@
 
 namespace vksplat::gpu {
 
+// The words of a SPIR-V module embedded as a uint32_t array (cmake/EmbedShaders.cmake).
+template <size_t N>
+std::span<const uint32_t> spirv_words(const uint32_t (&spirv)[N]) {
+    return {spirv, N};
+}
+
 class ComputePipeline {
 public:
     ComputePipeline(const Context& context, std::span<const uint32_t> spirv, uint32_t push_constant_bytes,

@@ -29,11 +29,6 @@
 namespace vksplat {
 namespace {
 
-template <size_t N>
-std::span<const uint32_t> words(const uint32_t (&spirv)[N]) {
-    return {spirv, N};
-}
-
 // Tile-entry capacity to start with: a few tiles per Gaussian covers typical scenes; the
 // frame grows it when a view needs more.
 constexpr uint32_t kInitialEntriesPerGaussian = 4;
@@ -63,15 +58,15 @@ struct Renderer::Impl {
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          preprocess(c, words(preprocess_spv), sizeof(render::PreprocessPush), {}, "preprocess"),
-          compact_visible(c, words(compact_visible_spv), sizeof(render::CompactVisiblePush), {}, "compact_visible"),
-          indirect_args(c, words(indirect_args_spv), sizeof(render::IndirectArgsPush), {}, "indirect_args"),
-          gather_tile_counts(c, words(gather_tile_counts_spv), sizeof(render::GatherTileCountsPush), {},
+          preprocess(c, gpu::spirv_words(preprocess_spv), sizeof(render::PreprocessPush), {}, "preprocess"),
+          compact_visible(c, gpu::spirv_words(compact_visible_spv), sizeof(render::CompactVisiblePush), {}, "compact_visible"),
+          indirect_args(c, gpu::spirv_words(indirect_args_spv), sizeof(render::IndirectArgsPush), {}, "indirect_args"),
+          gather_tile_counts(c, gpu::spirv_words(gather_tile_counts_spv), sizeof(render::GatherTileCountsPush), {},
                              "gather_tile_counts"),
-          emit_tile_entries(c, words(emit_tile_entries_spv), sizeof(render::EmitTileEntriesPush), {},
+          emit_tile_entries(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(render::EmitTileEntriesPush), {},
                             "emit_tile_entries"),
-          tile_ranges(c, words(tile_ranges_spv), sizeof(render::TileRangesPush), {}, "tile_ranges"),
-          blend(c, words(blend_spv), sizeof(render::BlendPush), {}, "blend"),
+          tile_ranges(c, gpu::spirv_words(tile_ranges_spv), sizeof(render::TileRangesPush), {}, "tile_ranges"),
+          blend(c, gpu::spirv_words(blend_spv), sizeof(render::BlendPush), {}, "blend"),
           scan(c),
           sort(c),
           stream(c),
@@ -98,7 +93,7 @@ const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
         if (!context.info().int64_atomics)
             throw GpuError("per-Gaussian statistics need 64-bit buffer atomics, which " + context.info().name +
                            " does not offer");
-        blend_stats = std::make_unique<gpu::ComputePipeline>(context, words(blend_stats_spv), sizeof(render::BlendStatsPush),
+        blend_stats = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_stats_spv), sizeof(render::BlendStatsPush),
                                                              std::vector<uint32_t>{}, "blend_stats");
     }
     return *blend_stats;
@@ -263,7 +258,7 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
 
 const gpu::ComputePipeline& Renderer::Impl::pack_pipeline() {
     if (!pack_rgba8)
-        pack_rgba8 = std::make_unique<gpu::ComputePipeline>(context, words(pack_rgba8_spv), sizeof(render::PackRgba8Push),
+        pack_rgba8 = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(pack_rgba8_spv), sizeof(render::PackRgba8Push),
                                                             std::vector<uint32_t>{}, "pack_rgba8");
     return *pack_rgba8;
 }
