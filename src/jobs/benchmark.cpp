@@ -36,7 +36,7 @@ BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& c
         if (view >= cameras.size()) throw InputError("view " + std::to_string(view), "no such camera");
         const Camera& camera = cameras[view];
         // Warm-up: pipelines, buffer growth and clocks settle before anything is timed.
-        for (int i = 0; i < options.warmup; ++i) renderer.render_gpu_only(camera, options.settings);
+        warm_up(options.warmup, [&] { renderer.render_gpu_only(camera, options.settings); });
 
         std::vector<double> frames;
         std::vector<std::string> order;

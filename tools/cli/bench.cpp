@@ -20,7 +20,7 @@ struct BenchArgs {
     std::string scene, cameras, views, tiled, json, charts, save_npy;
     int width = 0, height = 0, reps = 50, warmup = 5, sh_degree = 3;
     std::vector<float> background{0, 0, 0};
-    bool half_sh = false, floor = false, scaling = false, force = false;
+    bool half_sh = false, stats = false, floor = false, scaling = false, force = false;
 };
 
 std::array<int, 2> parse_grid(const std::string& text) {
@@ -71,6 +71,7 @@ int run_bench(const BenchArgs& args) {
     options.warmup = args.warmup;
     options.settings.background = {args.background[0], args.background[1], args.background[2]};
     options.settings.max_sh_degree = args.sh_degree;
+    options.settings.gather_stats = args.stats;
 
     jobs::BenchReport report;
     report.device = context.info().name;
@@ -78,8 +79,10 @@ int run_bench(const BenchArgs& args) {
     report.scene = args.scene + (args.tiled.empty() ? "" : " tiled " + args.tiled);
     report.gaussians = renderer.scene_size();
     report.half_sh = args.half_sh;
-    std::printf("device: %s (%s)\nscene: %s, %zu Gaussians%s\n", report.device.c_str(), report.driver.c_str(),
-                report.scene.c_str(), size_t(report.gaussians), args.half_sh ? ", half-precision SH" : "");
+    report.blend_stats = args.stats;
+    std::printf("device: %s (%s)\nscene: %s, %zu Gaussians%s%s\n", report.device.c_str(), report.driver.c_str(),
+                report.scene.c_str(), size_t(report.gaussians), args.half_sh ? ", half-precision SH" : "",
+                args.stats ? ", with the pruning scores' blend statistics" : "");
     if (args.floor) {
         report.rates = jobs::measure_device_rates(context);
         std::printf("measured: copy %.0f GB/s (read + write), radix sort %.2f G pairs/s (32-bit keys)\n",
@@ -138,10 +141,12 @@ void register_bench(CLI::App& app, Action& action) {
     cmd->add_option("--height", args->height, "render at this height");
     cmd->add_option("--tiled", args->tiled, "NxN copies of the scene seen by the tiled benchmark camera (e.g. 5x5)");
     cmd->add_option("--reps", args->reps, "timed frames per view")->capture_default_str();
-    cmd->add_option("--warmup", args->warmup, "untimed frames first")->capture_default_str();
+    cmd->add_option("--warmup", args->warmup, "untimed frames first (and at least a second of them)")->capture_default_str();
     cmd->add_option("--background", args->background, "R,G,B in [0, 1]")->delimiter(',')->expected(3);
     cmd->add_option("--sh-degree", args->sh_degree, "highest SH degree evaluated")->check(CLI::Range(0, 3));
     cmd->add_flag("--half-sh", args->half_sh, "keep SH in half precision on the device (half the SH memory)");
+    cmd->add_flag("--stats", args->stats,
+                  "gather the per-Gaussian blend statistics that pruning scores read (the cost of scoring a view)");
     cmd->add_flag("--floor", args->floor, "measure copy bandwidth and sort throughput; print each frame's floor");
     cmd->add_flag("--scaling", args->scaling,
                   "also time the first view at 256^2 .. 3840x2160 and the scene thinned and tiled to 1e4 .. 1.2e7");

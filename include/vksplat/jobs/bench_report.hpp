@@ -17,6 +17,7 @@ struct BenchReport {
     std::string device, driver, scene;
     uint64_t gaussians = 0;
     bool half_sh = false;
+    bool blend_stats = false;  // frames gathered the pruning statistics
     std::optional<DeviceRates> rates;           // with them, every view gets its floor
     BenchmarkResult views;
     std::vector<ScalingPoint> by_resolution, by_scene_size;

@@ -1,6 +1,7 @@
 #pragma once
 // Timing of the renderer: each view is rendered repeatedly after a warm-up and the GPU's own
 // timestamps give the median and minimum per frame and per stage. What `vksplat bench` does.
+#include <chrono>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -11,7 +12,7 @@
 namespace vksplat::jobs {
 
 struct BenchmarkOptions {
-    int warmup = 5;
+    int warmup = 5;  // untimed frames first, and for at least kWarmupTime (see warm_up)
     int repetitions = 50;
     RenderSettings settings;
 };
@@ -41,6 +42,17 @@ BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& c
                                 const std::string& device_name);
 
 double median(std::vector<double> values);
+
+// An idle GPU runs at a low clock for a while: on an H200, frames timed right after the CPU built
+// a large scene ran 2-3x slow in every stage, though five warm-up frames had gone before, and a
+// quarter of a second of copies once still measured 40% of the bandwidth. So
+// warm-up lasts `runs` calls and at least kWarmupTime of wall time.
+inline constexpr std::chrono::milliseconds kWarmupTime{1000};
+template <class Run>
+void warm_up(int runs, Run run) {
+    const auto until = std::chrono::steady_clock::now() + kWarmupTime;
+    for (int i = 0; i < runs || std::chrono::steady_clock::now() < until; ++i) run();
+}
 
 // The camera at another resolution with the same focal length per unit of width (the benchmark
 // convention: lego at 1920x1080 multiplies fx and fy by 1920 / 800), principal point centred.

@@ -9,7 +9,7 @@
 namespace vksplat::jobs {
 
 struct DeviceRates {
-    // Device-to-device vkCmdCopyBuffer of a large buffer, bytes read plus bytes written per ms.
+    // A shader copying a large buffer with every invocation, bytes read plus bytes written per ms.
     double copy_bytes_per_ms = 0;
     // Our radix sort of (uint32 key, uint32 value) pairs by all 32 key bits (4 digit passes).
     double sort_pairs_per_ms = 0;
@@ -18,12 +18,12 @@ struct DeviceRates {
 };
 
 struct RateOptions {
-    uint64_t copy_bytes = 512ull << 20;
+    uint64_t copy_bytes = 512ull << 20;  // < 64 GiB: the shader counts 16-byte words in 32 bits
     uint32_t sort_pairs = 16u << 20;
     int repetitions = 10;  // the median of these is reported
 };
 
-// Times a large buffer copy and a large sort with timestamp queries. Throws GpuError when the
+// Times a large shader copy and a large sort with timestamp queries. Throws GpuError when the
 // queue has no timestamps (lavapipe has them).
 DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions& options = {});
 
