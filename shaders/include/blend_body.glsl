@@ -107,27 +107,43 @@ void main() {
     uint contributors = 0u;
     bool done = !inside;
 
+    // Each thread holds the splat it will put in shared memory for the next batch. Its loads are
+    // issued before the current batch is blended, so their latency (a gather from anywhere in
+    // the splat arrays) hides behind that work instead of stalling the tile at the barrier.
+    uint next_gaussian = 0u;
+    vec4 next_mean_depth = vec4(0.0), next_conic_opacity = vec4(0.0), next_color = vec4(0.0);
+    if (range.x + gl_LocalInvocationIndex < range.y) {
+        next_gaussian = pc.tile_values.v[range.x + gl_LocalInvocationIndex];
+        next_mean_depth = pc.means_depth.v[next_gaussian];
+        next_conic_opacity = pc.conic_opacity.v[next_gaussian];
+        next_color = pc.colors.v[next_gaussian];
+    }
+
     for (uint start = range.x; start < range.y; start += BATCH) {
         // The whole tile stops once every pixel is done (a uniform decision, so the barriers
         // below stay in uniform control flow).
         if (gl_LocalInvocationIndex == 0u) finished_pixels = 0u;
         barrier();
         if (done) atomicAdd(finished_pixels, 1u);
-        const uint fetch = start + gl_LocalInvocationIndex;
-        if (fetch < range.y) {
-            const uint gaussian = pc.tile_values.v[fetch];
-            const vec4 mean_depth = pc.means_depth.v[gaussian];
-            const vec4 conic_opacity = pc.conic_opacity.v[gaussian];
-            batch_mean_depth[gl_LocalInvocationIndex] = mean_depth;
-            batch_conic_opacity[gl_LocalInvocationIndex] = conic_opacity;
-            batch_color[gl_LocalInvocationIndex] = pc.colors.v[gaussian];
-            batch_blocks[gl_LocalInvocationIndex] = touched_blocks(mean_depth.xy, conic_opacity, tile_origin);
+        if (start + gl_LocalInvocationIndex < range.y) {
+            batch_mean_depth[gl_LocalInvocationIndex] = next_mean_depth;
+            batch_conic_opacity[gl_LocalInvocationIndex] = next_conic_opacity;
+            batch_color[gl_LocalInvocationIndex] = next_color;
+            batch_blocks[gl_LocalInvocationIndex] = touched_blocks(next_mean_depth.xy, next_conic_opacity, tile_origin);
 #if GATHER_STATS
-            batch_gaussian[gl_LocalInvocationIndex] = gaussian;
+            batch_gaussian[gl_LocalInvocationIndex] = next_gaussian;
 #endif
         }
         barrier();
         if (finished_pixels == BATCH) break;
+
+        const uint fetch = start + BATCH + gl_LocalInvocationIndex;
+        if (fetch < range.y) {
+            next_gaussian = pc.tile_values.v[fetch];
+            next_mean_depth = pc.means_depth.v[next_gaussian];
+            next_conic_opacity = pc.conic_opacity.v[next_gaussian];
+            next_color = pc.colors.v[next_gaussian];
+        }
 
         const uint batch_size = min(BATCH, range.y - start);
         for (uint j = 0u; !done && j < batch_size; ++j) {
