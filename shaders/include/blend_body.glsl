@@ -92,6 +92,48 @@ shared uint batch_gaussian[BATCH];
 #endif
 shared uint finished_pixels;
 
+// What a pixel has accumulated so far.
+struct PixelState {
+    vec3 color;
+    float transmittance;
+    float depth_sum;
+    uint contributors;
+    bool done;  // transmittance would have fallen below MIN_TRANSMITTANCE: nothing more is added
+};
+
+// Alpha of the batch's splat j at the pixel, or 0 where the reference skips it. Splats whose
+// alpha >= 1/255 ellipse misses the pixel's block are not evaluated: their alpha is below 1/255 there.
+float splat_alpha(uint j, uint my_block, vec2 pixel_f) {
+    if ((batch_blocks[j] & my_block) == 0u) return 0.0;
+    const vec4 conic_o = batch_conic_opacity[j];
+    const vec2 d = batch_mean_depth[j].xy - pixel_f;
+    const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
+    if (power > 0.0) return 0.0;
+    return min(MAX_ALPHA, conic_o.w * exp(power));
+}
+
+// Composites the batch's splat j behind what the pixel holds, as the reference does.
+void blend_splat(uint j, float alpha, uvec2 pixel, inout PixelState state) {
+    if (alpha < MIN_ALPHA) return;
+    const float next_transmittance = state.transmittance * (1.0 - alpha);
+    if (next_transmittance < MIN_TRANSMITTANCE) {
+        // It stops the pixel without adding to it: still a pixel it decides.
+#if GATHER_STATS
+        record_stats(batch_gaussian[j], 0.0, batch_mean_depth[j].xy, pixel);
+#endif
+        state.done = true;
+        return;
+    }
+    const float weight = alpha * state.transmittance;
+#if GATHER_STATS
+    record_stats(batch_gaussian[j], weight, batch_mean_depth[j].xy, pixel);
+#endif
+    state.color += batch_color[j].rgb * weight;
+    state.depth_sum += batch_mean_depth[j].z * weight;
+    state.transmittance = next_transmittance;
+    ++state.contributors;
+}
+
 void main() {
     const CameraParams cam = pc.camera.c;
     const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
@@ -101,11 +143,7 @@ void main() {
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
-    float transmittance = 1.0;
-    vec3 color = vec3(0.0);
-    float depth_sum = 0.0;
-    uint contributors = 0u;
-    bool done = !inside;
+    PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, !inside);
 
     // Each thread holds the splat it will put in shared memory for the next batch. Its loads are
     // issued before the current batch is blended, so their latency (a gather from anywhere in
@@ -124,7 +162,7 @@ void main() {
         // below stay in uniform control flow).
         if (gl_LocalInvocationIndex == 0u) finished_pixels = 0u;
         barrier();
-        if (done) atomicAdd(finished_pixels, 1u);
+        if (state.done) atomicAdd(finished_pixels, 1u);
         if (start + gl_LocalInvocationIndex < range.y) {
             batch_mean_depth[gl_LocalInvocationIndex] = next_mean_depth;
             batch_conic_opacity[gl_LocalInvocationIndex] = next_conic_opacity;
@@ -146,41 +184,22 @@ void main() {
         }
 
         const uint batch_size = min(BATCH, range.y - start);
-        for (uint j = 0u; !done && j < batch_size; ++j) {
-            if ((batch_blocks[j] & my_block) == 0u) continue;
-            const vec4 mean_depth = batch_mean_depth[j];
-            const vec4 conic_o = batch_conic_opacity[j];
-            const vec2 d = mean_depth.xy - pixel_f;
-            const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
-            if (power > 0.0) continue;
-            const float alpha = min(MAX_ALPHA, conic_o.w * exp(power));
-            if (alpha < MIN_ALPHA) continue;
-            const float next_transmittance = transmittance * (1.0 - alpha);
-            if (next_transmittance < MIN_TRANSMITTANCE) {
-                // It stops the pixel without adding to it: still a pixel it decides.
-#if GATHER_STATS
-                record_stats(batch_gaussian[j], 0.0, mean_depth.xy, pixel);
-#endif
-                done = true;
-                continue;
-            }
-            const float weight = alpha * transmittance;
-#if GATHER_STATS
-            record_stats(batch_gaussian[j], weight, mean_depth.xy, pixel);
-#endif
-            color += batch_color[j].rgb * weight;
-            depth_sum += mean_depth.z * weight;
-            transmittance = next_transmittance;
-            ++contributors;
+        for (uint j = 0u; !state.done && j < batch_size; j += 2u) {
+            // Two splats' alphas do not depend on the pixel's state: evaluated together, their
+            // exp chains overlap; they are then composited in order, exactly as one at a time.
+            const float alpha0 = splat_alpha(j, my_block, pixel_f);
+            const float alpha1 = j + 1u < batch_size ? splat_alpha(j + 1u, my_block, pixel_f) : 0.0;
+            blend_splat(j, alpha0, pixel, state);
+            if (!state.done) blend_splat(j + 1u, alpha1, pixel, state);
         }
         barrier();  // the next batch overwrites shared memory
     }
 
     if (inside) {
         const uint index = pixel.y * cam.size.x + pixel.x;
-        const float alpha = 1.0 - transmittance;
-        pc.out_color_alpha.v[index] = vec4(color + transmittance * cam.background.rgb, alpha);
-        pc.out_depth.v[index] = alpha > 0.0 ? depth_sum / alpha : 0.0;
-        pc.out_contributors.v[index] = contributors;
+        const float alpha = 1.0 - state.transmittance;
+        pc.out_color_alpha.v[index] = vec4(state.color + state.transmittance * cam.background.rgb, alpha);
+        pc.out_depth.v[index] = alpha > 0.0 ? state.depth_sum / alpha : 0.0;
+        pc.out_contributors.v[index] = state.contributors;
     }
 }
