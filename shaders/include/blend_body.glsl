@@ -1,6 +1,12 @@
 #ifndef GATHER_STATS
 #error define GATHER_STATS before including blend_body.glsl
 #endif
+// CARRY_STATE 1 (blend_carry.comp): one depth-ordered chunk of a frame too large for the memory
+// budget. The pixel state is loaded from the previous chunk and, except after the last chunk,
+// stored for the next one instead of the finished pixel (see the CARRY_ blocks below).
+#ifndef CARRY_STATE
+#define CARRY_STATE 0
+#endif
 // The blend pass, included by blend.comp (GATHER_STATS 0) and blend_stats.comp (1), so that the
 // plain pipeline holds no statistics code (and needs no 64-bit integers) at all.
 //
@@ -70,7 +76,20 @@ layout(push_constant) uniform Push {
     Uints stat_pixels;       // per Gaussian: pixels where alpha >= 1/255
     Uints stat_centre_weight;  // per Gaussian: alpha * T at the pixel holding its centre (float bits)
 #endif
+#if CARRY_STATE
+    Vec4s carried_color;          // colour so far (rgb, no background) and transmittance (a)
+    Floats carried_depth;         // sum of depth * weight so far
+    Uints carried_contributors;   // splats blended so far; CARRY_STOPPED once the pixel stopped
+    Uints counters;               // the frame counters (frame.glsl)
+    uint carry_flags;             // CARRY_LOAD | CARRY_LAST
+#endif
 } pc;
+
+#if CARRY_STATE
+const uint CARRY_LOAD = 1u;   // start from the carried state (every chunk but the first)
+const uint CARRY_LAST = 2u;   // write the finished pixel (background added) instead of the state
+const uint CARRY_STOPPED = 0x80000000u;
+#endif
 
 #if GATHER_STATS
 // Only the one pixel nearest the projected centre writes it, so no atomic is needed; it stays 0
@@ -163,6 +182,19 @@ void main() {
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
     PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, !inside);
+#if CARRY_STATE
+    // A chunk whose tile entries overflowed their buffers is rendered again once they have
+    // grown: leave the carried state as it is (a uniform exit, before any barrier).
+    if (pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity) return;
+    if (inside && (pc.carry_flags & CARRY_LOAD) != 0u) {
+        const uint index = pixel.y * cam.size.x + pixel.x;
+        const vec4 carried = pc.carried_color.v[index];
+        const uint contributors = pc.carried_contributors.v[index];
+        // A pixel that stopped stays stopped.
+        state = PixelState(carried.rgb, carried.a, pc.carried_depth.v[index], contributors & ~CARRY_STOPPED,
+                           (contributors & CARRY_STOPPED) != 0u);
+    }
+#endif
 
     // Each thread holds the splat it will put in shared memory for the next batch. Its loads are
     // issued before the current batch is blended, so their latency (a gather from anywhere in
@@ -216,6 +248,14 @@ void main() {
 
     if (inside) {
         const uint index = pixel.y * cam.size.x + pixel.x;
+#if CARRY_STATE
+        if ((pc.carry_flags & CARRY_LAST) == 0u) {
+            pc.carried_color.v[index] = vec4(state.color, state.transmittance);
+            pc.carried_depth.v[index] = state.depth_sum;
+            pc.carried_contributors.v[index] = state.contributors | (state.done ? CARRY_STOPPED : 0u);
+            return;
+        }
+#endif
         const float alpha = 1.0 - state.transmittance;
         pc.out_color_alpha.v[index] = vec4(state.color + state.transmittance * cam.background.rgb, alpha);
         pc.out_depth.v[index] = alpha > 0.0 ? state.depth_sum / alpha : 0.0;

@@ -181,11 +181,22 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
                                  ? std::min(size_control.minSubgroupSize, subgroup.subgroupSize)
                                  : subgroup.subgroupSize;
 
-    VkPhysicalDeviceMemoryProperties memory{};
-    vkGetPhysicalDeviceMemoryProperties(device, &memory);
+    // A physical-device query may chain a device extension's structure once the device offers
+    // it; the extension need not be enabled on a VkDevice.
+    VkPhysicalDeviceMemoryBudgetPropertiesEXT budget{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_BUDGET_PROPERTIES_EXT};
+    const bool has_budget = has_extension(extensions, VK_EXT_MEMORY_BUDGET_EXTENSION_NAME);
+    VkPhysicalDeviceMemoryProperties2 memory2{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_MEMORY_PROPERTIES_2};
+    if (has_budget) memory2.pNext = &budget;
+    vkGetPhysicalDeviceMemoryProperties2(device, &memory2);
+    const VkPhysicalDeviceMemoryProperties& memory = memory2.memoryProperties;
     for (uint32_t i = 0; i < memory.memoryHeapCount; ++i)
-        if (memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT)
-            info.device_local_bytes = std::max<uint64_t>(info.device_local_bytes, memory.memoryHeaps[i].size);
+        if ((memory.memoryHeaps[i].flags & VK_MEMORY_HEAP_DEVICE_LOCAL_BIT) &&
+            memory.memoryHeaps[i].size > info.device_local_bytes) {
+            info.device_local_bytes = memory.memoryHeaps[i].size;
+            info.device_local_budget = has_budget && budget.heapBudget[i] > 0
+                                           ? std::min<uint64_t>(budget.heapBudget[i], memory.memoryHeaps[i].size)
+                                           : memory.memoryHeaps[i].size;
+        }
 
     const int family = find_compute_queue_family(device);
     if (family >= 0) {
@@ -291,6 +302,7 @@ std::vector<DeviceInfo> list_devices() {
 }
 
 Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()) {
+    impl_->memory_budget = options.memory_budget;
     Impl& d = *impl_;
     d.instance = create_instance(options.validation, &d);
     try {
@@ -392,6 +404,9 @@ VkDevice Context::device() const { return impl_->device; }
 VkQueue Context::queue() const { return impl_->queue; }
 uint32_t Context::queue_family() const { return impl_->queue_family; }
 const DeviceInfo& Context::info() const { return impl_->info; }
+uint64_t Context::memory_budget() const {
+    return impl_->memory_budget > 0 ? impl_->memory_budget : impl_->info.device_local_budget;
+}
 bool Context::owns_device() const { return impl_->owned; }
 
 std::vector<std::string> Context::validation_messages() const {

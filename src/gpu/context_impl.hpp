@@ -19,6 +19,7 @@ struct Context::Impl {
     uint32_t queue_family = 0;
     bool owned = true;  // false: instance and device are the application's (AdoptedDevice)
     DeviceInfo info;
+    uint64_t memory_budget = 0;  // ContextOptions::memory_budget (0: info.device_local_budget)
     VkPhysicalDeviceMemoryProperties memory{};
     VolkDeviceTable vk{};
     mutable std::mutex messages_mutex;

@@ -43,11 +43,12 @@ std::vector<uint32_t> block_constants(const Context& context) {
 
 }  // namespace
 
+uint64_t PrefixScan::Scratch::bytes_for(const Context&, uint32_t max_count) {
+    return (VkDeviceSize(sums_offset) + (VkDeviceSize(max_count) + block_size - 1) / block_size + 1) * sizeof(uint32_t);
+}
+
 PrefixScan::Scratch::Scratch(const Context& context, uint32_t max_count)
-    : capacity_(max_count),
-      buffer_(context,
-              (VkDeviceSize(sums_offset) + (VkDeviceSize(max_count) + block_size - 1) / block_size + 1) * sizeof(uint32_t),
-              MemoryKind::device, "prefix scan scratch") {}
+    : capacity_(max_count), buffer_(context, bytes_for(context, max_count), MemoryKind::device, "prefix scan scratch") {}
 
 PrefixScan::PrefixScan(const Context& context) {
     const auto constants = block_constants(context);

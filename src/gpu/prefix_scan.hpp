@@ -29,6 +29,8 @@ public:
     class Scratch {
     public:
         Scratch(const Context& context, uint32_t max_count);
+        // The device_bytes() a scratch for max_count elements will hold (for memory budgets).
+        static uint64_t bytes_for(const Context& context, uint32_t max_count);
         uint32_t capacity() const { return capacity_; }
         const Buffer& buffer() const { return buffer_; }
         uint64_t device_bytes() const { return buffer_.size(); }

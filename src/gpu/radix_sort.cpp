@@ -89,6 +89,12 @@ RadixSort::Scratch::Scratch(const Context& context, uint32_t max_count)
                  MemoryKind::device, "radix sort histogram"),
       control_(context, kTotalsOffset + kTotalsBytes, MemoryKind::device, "radix sort control") {}
 
+uint64_t RadixSort::Scratch::bytes_for(const Context& context, uint32_t max_count) {
+    return VkDeviceSize(max_count) * 8 +
+           VkDeviceSize(kRadixMax) * blocks_for(max_count, config_for(context.info()).block_size()) * 4 +
+           kTotalsOffset + kTotalsBytes;
+}
+
 RadixSort::RadixSort(const Context& context) {
     const Config config = config_for(context.info());
     block_size_ = config.block_size();

@@ -28,6 +28,8 @@ public:
     class Scratch {
     public:
         Scratch(const Context& context, uint32_t max_count);
+        // The device_bytes() a scratch for max_count pairs will hold (for memory budgets).
+        static uint64_t bytes_for(const Context& context, uint32_t max_count);
         uint32_t capacity() const { return capacity_; }
         // Device memory held (for memory statistics).
         uint64_t device_bytes() const {

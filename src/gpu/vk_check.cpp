@@ -28,7 +28,7 @@ void throw_vk_error(VkResult result, const char* call) {
     std::string message = std::string("Vulkan call failed: ") + call + " returned " + result_name(result) +
                           " (" + std::to_string(static_cast<int>(result)) + ")";
     if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-        message += ": the GPU ran out of memory; try a smaller scene or resolution";
+        message += std::string(": the GPU ran out of memory; ") + kMemoryBudgetHint;
     throw GpuError(message);
 }
 

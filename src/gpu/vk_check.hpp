@@ -9,6 +9,11 @@
 
 namespace vksplat::gpu {
 
+// What every out-of-memory message suggests: a smaller budget makes the renderer split frames.
+inline constexpr const char* kMemoryBudgetHint =
+    "set a smaller memory budget (--memory-budget MB, or ContextOptions::memory_budget) so frames render in "
+    "depth-ordered chunks, or use a smaller scene or resolution";
+
 const char* result_name(VkResult result);
 [[noreturn]] void throw_vk_error(VkResult result, const char* call);
 

@@ -8,15 +8,24 @@
 namespace vksplat::render {
 namespace {
 
-gpu::Buffer device(const gpu::Context& context, uint64_t bytes, const char* name) {
-    return gpu::Buffer(context, bytes, gpu::MemoryKind::device, name);
+// Frees the old buffer before allocating its replacement, so that growing never holds both
+// (device memory stays within what bytes_for() promises for the new sizes).
+void replace(gpu::Buffer& buffer, const gpu::Context& context, uint64_t bytes, const char* name) {
+    buffer = gpu::Buffer();
+    buffer = gpu::Buffer(context, bytes, gpu::MemoryKind::device, name);
+}
+
+void replace_sort_scratch(std::unique_ptr<gpu::RadixSort::Scratch>& scratch, const gpu::Context& context,
+                          uint32_t count) {
+    scratch.reset();
+    scratch = std::make_unique<gpu::RadixSort::Scratch>(context, count);
 }
 
 }  // namespace
 
 FrameResources::FrameResources(const gpu::Context& context_) : context(&context_) {
-    camera = device(context_, sizeof(CameraParams), "camera");
-    counters = device(context_, kCounterCount * sizeof(uint32_t), "frame counters");
+    replace(camera, context_, sizeof(CameraParams), "camera");
+    replace(counters, context_, kCounterCount * sizeof(uint32_t), "frame counters");
     recorded_counters =
         gpu::Buffer(context_, kCounterCount * sizeof(uint32_t), gpu::MemoryKind::readback, "recorded frame counters");
     std::memset(recorded_counters.mapped(), 0, kCounterCount * sizeof(uint32_t));
@@ -27,46 +36,48 @@ void FrameResources::ensure_gaussians(uint32_t count) {
     if (count <= gaussian_capacity) return;
     const auto& c = *context;
     const uint64_t n = count;
-    means_depth = device(c, n * 16, "projected means and depths");
-    conic_opacity = device(c, n * 16, "conics and opacities");
-    colors = device(c, n * 16, "splat colours");
-    rects = device(c, n * 8, "tile rectangles");
-    tiles_touched = device(c, n * 4, "tiles per splat");
-    visible = device(c, n * 4, "visibility flags");
-    visible_offsets = device(c, n * 4, "visible offsets");
-    depth_keys = device(c, n * 4, "depth keys");
-    depth_values = device(c, n * 4, "depth-sorted indices");
-    sorted_tile_counts = device(c, n * 4, "depth-ordered tile counts");
-    entry_offsets = device(c, n * 4, "tile entry offsets");
+    replace(means_depth, c, n * 16, "projected means and depths");
+    replace(conic_opacity, c, n * 16, "conics and opacities");
+    replace(colors, c, n * 16, "splat colours");
+    replace(rects, c, n * 8, "tile rectangles");
+    replace(tiles_touched, c, n * 4, "tiles per splat");
+    replace(visible, c, n * 4, "visibility flags");
+    replace(visible_offsets, c, n * 4, "visible offsets");
+    replace(depth_keys, c, n * 4, "depth keys");
+    replace(depth_values, c, n * 4, "depth-sorted indices");
+    replace(sorted_tile_counts, c, n * 4, "depth-ordered tile counts");
+    replace(entry_offsets, c, n * 4, "tile entry offsets");
+    scan_scratch.reset();
     scan_scratch = std::make_unique<gpu::PrefixScan::Scratch>(c, count);
     gaussian_capacity = count;
     if (!sort_scratch || sort_scratch->capacity() < count)
-        sort_scratch = std::make_unique<gpu::RadixSort::Scratch>(c, std::max(count, entry_capacity));
+        replace_sort_scratch(sort_scratch, c, std::max(count, entry_capacity));
 }
 
 void FrameResources::ensure_entries(uint32_t count) {
     count = std::max(count, 1u);
     if (count <= entry_capacity) return;
     const auto& c = *context;
-    tile_keys = device(c, uint64_t(count) * 4, "tile keys");
-    tile_values = device(c, uint64_t(count) * 4, "tile entries");
+    replace(tile_keys, c, uint64_t(count) * 4, "tile keys");
+    replace(tile_values, c, uint64_t(count) * 4, "tile entries");
     entry_capacity = count;
     if (!sort_scratch || sort_scratch->capacity() < count)
-        sort_scratch = std::make_unique<gpu::RadixSort::Scratch>(c, std::max(count, gaussian_capacity));
+        replace_sort_scratch(sort_scratch, c, std::max(count, gaussian_capacity));
 }
 
 void FrameResources::ensure_image(uint32_t pixels, uint32_t tiles) {
     pixels = std::max(pixels, 1u);
     if (pixels > pixel_capacity) {
         const auto& c = *context;
-        color_alpha = device(c, uint64_t(pixels) * 16, "colour and alpha image");
-        depth = device(c, uint64_t(pixels) * 4, "depth image");
-        contributors = device(c, uint64_t(pixels) * 4, "contributor counts");
+        replace(color_alpha, c, uint64_t(pixels) * 16, "colour and alpha image");
+        replace(depth, c, uint64_t(pixels) * 4, "depth image");
+        replace(contributors, c, uint64_t(pixels) * 4, "contributor counts");
+        readback = gpu::Buffer();
         readback = gpu::Buffer(c, readback_bytes(pixels), gpu::MemoryKind::readback, "image readback");
         pixel_capacity = pixels;
     }
     if (tiles > tile_capacity) {
-        ranges = device(*context, uint64_t(tiles) * 8, "tile ranges");
+        replace(ranges, *context, uint64_t(tiles) * 8, "tile ranges");
         tile_capacity = tiles;
     }
 }
@@ -75,24 +86,45 @@ void FrameResources::ensure_stats(uint32_t count) {
     count = std::max(count, 1u);
     if (count <= stats_capacity) return;
     const auto& c = *context;
-    stat_weight = device(c, uint64_t(count) * 8, "blend weight per Gaussian");
-    stat_max_weight = device(c, uint64_t(count) * 4, "max weight per Gaussian");
-    stat_pixels = device(c, uint64_t(count) * 4, "pixels per Gaussian");
-    stat_centre_weight = device(c, uint64_t(count) * 4, "centre-pixel weight per Gaussian");
+    replace(stat_weight, c, uint64_t(count) * 8, "blend weight per Gaussian");
+    replace(stat_max_weight, c, uint64_t(count) * 4, "max weight per Gaussian");
+    replace(stat_pixels, c, uint64_t(count) * 4, "pixels per Gaussian");
+    replace(stat_centre_weight, c, uint64_t(count) * 4, "centre-pixel weight per Gaussian");
     stats_readback = gpu::Buffer(c, uint64_t(count) * 36, gpu::MemoryKind::readback, "statistics readback");
     stats_capacity = count;
+}
+
+void FrameResources::ensure_carry(uint32_t pixels) {
+    pixels = std::max(pixels, 1u);
+    if (pixels <= carry_capacity) return;
+    const auto& c = *context;
+    replace(carried_color, c, uint64_t(pixels) * 16, "carried colour and transmittance");
+    replace(carried_depth, c, uint64_t(pixels) * 4, "carried depth sums");
+    replace(carried_contributors, c, uint64_t(pixels) * 4, "carried contributor counts");
+    carry_capacity = pixels;
 }
 
 void FrameResources::ensure_packed(uint32_t pixels) {
     pixels = std::max(pixels, 1u);
     if (pixels <= packed_capacity) return;
-    packed = device(*context, uint64_t(pixels) * 4, "8-bit image");
+    replace(packed, *context, uint64_t(pixels) * 4, "8-bit image");
     packed_capacity = pixels;
 }
 
 bool FrameResources::fits(uint32_t gaussians, uint32_t pixels, uint32_t tiles, uint32_t entries) const {
     return std::max(gaussians, 1u) <= gaussian_capacity && std::max(pixels, 1u) <= pixel_capacity &&
            tiles <= tile_capacity && std::max(entries, 1u) <= entry_capacity;
+}
+
+uint64_t FrameResources::bytes_for(const gpu::Context& context, uint32_t gaussians, uint32_t entries, uint32_t pixels,
+                                   uint32_t tiles, bool carry) {
+    gaussians = std::max(gaussians, 1u);
+    entries = std::max(entries, 1u);
+    pixels = std::max(pixels, 1u);
+    return sizeof(CameraParams) + kCounterCount * sizeof(uint32_t) + uint64_t(gaussians) * 84 +
+           gpu::PrefixScan::Scratch::bytes_for(context, gaussians) + uint64_t(entries) * 8 +
+           gpu::RadixSort::Scratch::bytes_for(context, std::max(gaussians, entries)) + uint64_t(pixels) * 24 +
+           uint64_t(tiles) * 8 + (carry ? uint64_t(pixels) * 24 : 0);
 }
 
 VkDeviceSize FrameResources::readback_bytes(uint32_t pixels) {
@@ -105,7 +137,7 @@ uint64_t FrameResources::device_bytes() const {
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
                                  &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels,
-                                 &stat_centre_weight})
+                                 &stat_centre_weight, &carried_color, &carried_depth, &carried_contributors})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

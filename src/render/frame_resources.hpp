@@ -38,6 +38,11 @@ struct FrameResources {
     gpu::Buffer color_alpha, depth, contributors, ranges;
     gpu::Buffer readback;  // host-visible: color_alpha, depth, contributors, then the counters
 
+    // Per-pixel state carried from one depth-ordered chunk to the next (frames larger than the
+    // memory budget; allocated on the first such frame).
+    uint32_t carry_capacity = 0;
+    gpu::Buffer carried_color, carried_depth, carried_contributors;
+
     // Frames recorded into an application's command buffer (Renderer::record).
     uint32_t packed_capacity = 0;
     gpu::Buffer packed;              // 8-bit RGBA words for an 8-bit target (allocated on first use)
@@ -49,9 +54,14 @@ struct FrameResources {
     void ensure_image(uint32_t pixels, uint32_t tiles);
     void ensure_stats(uint32_t count);
     void ensure_packed(uint32_t pixels);
+    void ensure_carry(uint32_t pixels);
     // Whether the ensure_* calls for these sizes would keep every buffer (reallocate none).
     bool fits(uint32_t gaussians, uint32_t pixels, uint32_t tiles, uint32_t entries) const;
     uint64_t device_bytes() const;
+    // The device_bytes() of fresh resources after ensure_gaussians, ensure_entries, ensure_image
+    // (and ensure_carry) for these sizes: what a frame needs besides the scene.
+    static uint64_t bytes_for(const gpu::Context& context, uint32_t gaussians, uint32_t entries, uint32_t pixels,
+                              uint32_t tiles, bool carry);
     static VkDeviceSize readback_bytes(uint32_t pixels);
 };
 

@@ -13,12 +13,9 @@
 
 namespace vksplat::render {
 
-namespace {
-
-// Halves packed two per uint, low half first (what unpackHalf2x16 reads); an odd count is padded.
 // Values beyond the half range are clamped to it rather than becoming infinities, which would
 // turn into NaN colours.
-std::vector<uint32_t> pack_halves(const std::vector<float>& values) {
+std::vector<uint32_t> pack_halves(std::span<const float> values) {
     constexpr float kHalfMax = 65504.0f;
     std::vector<uint32_t> words((values.size() + 1) / 2, 0);
     for (size_t i = 0; i < values.size(); ++i)
@@ -26,9 +23,7 @@ std::vector<uint32_t> pack_halves(const std::vector<float>& values) {
     return words;
 }
 
-}  // namespace
-
-GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& cloud, const SceneStorage& storage) {
+HostScene HostScene::activate(const GaussianCloud& cloud) {
     cloud.check_consistent();
     if (cloud.size() > std::numeric_limits<uint32_t>::max() / 64)
         throw InputError("scene", "too many Gaussians for one GPU scene (" + std::to_string(cloud.size()) + ")");
@@ -45,14 +40,28 @@ GpuScene GpuScene::upload(const gpu::Context& context, const GaussianCloud& clou
         const float norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
         for (int k = 0; k < 4; ++k) out[8 + k] = q[k] / norm;
     }
+    HostScene host;
+    host.count = static_cast<uint32_t>(n);
+    host.sh_degree = cloud.sh_degree;
+    host.params = std::move(params);
+    host.sh = cloud.sh;
+    return host;
+}
+
+GpuScene GpuScene::upload(const gpu::Context& context, const HostScene& host, const SceneStorage& storage) {
     GpuScene scene;
-    scene.count = static_cast<uint32_t>(n);
-    scene.sh_degree = cloud.sh_degree;
-    scene.params = gpu::upload_buffer(context, params, "Gaussian parameters");
+    scene.count = host.count;
+    scene.sh_degree = host.sh_degree;
+    scene.params = gpu::upload_buffer(context, host.params, "Gaussian parameters");
     scene.half_sh = storage.half_sh;
-    scene.sh = storage.half_sh ? gpu::upload_buffer(context, pack_halves(cloud.sh), "spherical harmonics (half)")
-                               : gpu::upload_buffer(context, cloud.sh, "spherical harmonics");
+    scene.sh = storage.half_sh ? gpu::upload_buffer(context, pack_halves(host.sh), "spherical harmonics (half)")
+                               : gpu::upload_buffer(context, host.sh, "spherical harmonics");
     return scene;
+}
+
+uint64_t GpuScene::bytes_for(uint32_t count, int sh_degree, bool half_sh) {
+    const uint64_t sh_values = uint64_t(count) * sh_coefficients_for_degree(sh_degree) * 3;
+    return uint64_t(count) * 48 + (half_sh ? (sh_values + 1) / 2 * 4 : sh_values * 4);
 }
 
 }  // namespace vksplat::render

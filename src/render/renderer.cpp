@@ -1,8 +1,11 @@
 #include "vksplat/render/renderer.hpp"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <cstdio>
+#include <deque>
 #include <stdexcept>
 
 #include "gpu/command_stream.hpp"
@@ -14,8 +17,10 @@
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/passes.hpp"
+#include "render/scene_chunks.hpp"
 #include "render/target_copy.hpp"
 #include "shaders/blend.spv.h"
+#include "shaders/blend_carry.spv.h"
 #include "shaders/blend_stats.spv.h"
 #include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
@@ -38,6 +43,12 @@ constexpr double kEntryGrowth = 1.25;
 // every real tile.
 uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
 
+std::string mebibytes(uint64_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / (1 << 20));
+    return text;
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -49,8 +60,17 @@ struct Renderer::Impl {
     gpu::CommandStream stream;
     std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
     std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
+    std::unique_ptr<gpu::ComputePipeline> blend_carry;  // built on the first frame rendered in chunks
     bool recorded = false;                               // record() was called: frames may be in flight
-    render::GpuScene scene;
+    render::GpuScene scene;  // params and sh are empty while the scene lives on the host only (chunked frames)
+    // Device memory the renderer may hold (SceneStorage::memory_budget, else the context's).
+    uint64_t budget = 0;
+    // The activated scene in host memory, kept when a frame may have to be split into chunks
+    // (the scene did not fit the budget, or the budget was set explicitly); else empty.
+    render::HostScene host;
+    bool has_host = false;
+    std::unique_ptr<render::SceneChunks> chunks;  // device buffers for one chunk (chunked frames)
+    double chunk_entries_per_gaussian = kInitialEntriesPerGaussian;  // learnt by chunked frames
     size_t input_count = 0;                // Gaussians in the cloud given to set_scene
     std::vector<uint32_t> kept_indices;     // input index of each uploaded Gaussian, if any were dropped
     render::FrameResources frame;
@@ -74,8 +94,11 @@ struct Renderer::Impl {
 
     VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
 
-    // Everything from the per-frame parameters to the blended image, recorded into `stream`.
-    void record_passes(gpu::CommandStream& stream, const render::CameraParams& params, bool gather_stats);
+    // Everything from the per-frame parameters to the blended image of `source` (the scene, or one
+    // chunk of it), recorded into `stream`. With carry_flags (blend_body.glsl's CARRY_ flags) the
+    // blend continues from, and except for the last chunk stores, the carried pixel state.
+    void record_passes(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
+                       bool gather_stats, const uint32_t* carry_flags = nullptr);
     void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
     void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                      const RenderTarget& target);
@@ -84,6 +107,17 @@ struct Renderer::Impl {
     // use is freed. Nothing to wait for if record() was never called.
     void wait_for_recorded_frames() const;
     void run(const Camera& camera, const RenderSettings& settings, bool read_back);
+    // The frame with the whole scene on the device; false (having drawn nothing) when its tile
+    // entries would outgrow the memory budget and the frame can go in chunks instead.
+    bool run_whole(const Camera& camera, const RenderSettings& settings, bool read_back);
+    // The frame in depth-ordered chunks uploaded from `host`, each within the memory budget.
+    void run_chunked(const Camera& camera, const RenderSettings& settings, bool read_back);
+    // Device bytes after ensure_* for these sizes, given what the frame resources already hold.
+    uint64_t projected_frame_bytes(uint32_t gaussians, uint32_t entries, uint32_t pixels, uint32_t tiles, bool carry,
+                                   bool gather_stats) const;
+    uint64_t scene_device_bytes() const;
+    const gpu::ComputePipeline& carry_pipeline();
+    void add_stage_times();
     const gpu::ComputePipeline& stats_pipeline();
     GaussianStats read_stats() const;
 };
@@ -99,9 +133,10 @@ const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
     return *blend_stats;
 }
 
-void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::CameraParams& params, bool gather_stats) {
+void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::CameraParams& params,
+                                   const render::GpuScene& source, bool gather_stats, const uint32_t* carry_flags) {
     using namespace render;
-    const uint32_t n = scene.count;
+    const uint32_t n = source.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
     auto& f = frame;
 
@@ -119,7 +154,7 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
     stream.barrier();
 
     record_preprocess(stream, preprocess,
-                      {f.camera.address(), scene.params.address(), scene.sh.address(), f.means_depth.address(),
+                      {f.camera.address(), source.params.address(), source.sh.address(), f.means_depth.address(),
                        f.conic_opacity.address(), f.colors.address(), f.rects.address(), f.tiles_touched.address(),
                        f.visible.address()},
                       n);
@@ -178,7 +213,12 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
     const BlendPush blend_push{f.camera.address(),      f.ranges.address(),        f.tile_values.address(),
                                f.means_depth.address(), f.conic_opacity.address(), f.colors.address(),
                                f.color_alpha.address(), f.depth.address(),         f.contributors.address()};
-    if (gather_stats)
+    if (carry_flags)
+        record_blend_carry(stream, carry_pipeline(),
+                           {blend_push, f.carried_color.address(), f.carried_depth.address(),
+                            f.carried_contributors.address(), f.counters.address(), *carry_flags},
+                           tiles_x, tiles_y);
+    else if (gather_stats)
         record_blend_stats(stream, *blend_stats,
                            {blend_push, f.stat_weight.address(), f.stat_max_weight.address(), f.stat_pixels.address(),
                             f.stat_centre_weight.address()},
@@ -194,7 +234,7 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     const uint32_t n = scene.count;
     auto& f = frame;
     stream.begin();
-    record_passes(stream, params, gather_stats);
+    record_passes(stream, params, scene, gather_stats);
     if (gather_stats) {
         const uint64_t g = n;
         stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
@@ -214,8 +254,61 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     stream.submit_and_wait();
 }
 
+uint64_t Renderer::Impl::scene_device_bytes() const {
+    return scene.params.size() + scene.sh.size() + (chunks ? chunks->device.params.size() + chunks->device.sh.size() : 0);
+}
+
+uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entries, uint32_t pixels, uint32_t tiles,
+                                               bool carry, bool gather_stats) const {
+    const auto& f = frame;
+    const uint32_t carried = std::max(carry ? pixels : 0u, f.carry_capacity);
+    const uint64_t stats_count = std::max(gather_stats ? std::max(gaussians, 1u) : 0u, f.stats_capacity);
+    return render::FrameResources::bytes_for(context, std::max(gaussians, f.gaussian_capacity),
+                                             std::max(entries, f.entry_capacity), std::max(pixels, f.pixel_capacity),
+                                             std::max(tiles, f.tile_capacity), false) +
+           uint64_t(carried) * 24 + stats_count * 20 + f.packed.size();
+}
+
+const gpu::ComputePipeline& Renderer::Impl::carry_pipeline() {
+    if (!blend_carry)
+        blend_carry = std::make_unique<gpu::ComputePipeline>(context, words(blend_carry_spv), sizeof(render::BlendCarryPush),
+                                                             std::vector<uint32_t>{}, "blend_carry");
+    return *blend_carry;
+}
+
+void Renderer::Impl::add_stage_times() {
+    for (const auto& t : stream.stage_times()) {
+        auto same = std::find_if(stats.stages.begin(), stats.stages.end(),
+                                 [&](const StageTiming& s) { return s.stage == t.label; });
+        if (same == stats.stages.end())
+            stats.stages.push_back({t.label, t.milliseconds});
+        else
+            same->milliseconds += t.milliseconds;
+        stats.gpu_milliseconds += t.milliseconds;
+    }
+}
+
 void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
     camera.validate();
+    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
+    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    stats = {};
+    stats.gaussians = scene.count;
+    if (scene.params) {
+        const uint32_t entries = std::max(frame.entry_capacity, std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
+        const uint64_t need = scene_device_bytes() +
+                              projected_frame_bytes(scene.count, entries, pixels, tiles, false, settings.gather_stats);
+        // Without a host copy there is nothing to chunk from: the budget is then the device's own
+        // limit, and a frame beyond it fails with the allocation's out-of-memory message.
+        if ((need <= budget || !has_host) && run_whole(camera, settings, read_back)) return;
+        // From here on the scene lives on the host: free its device copy for the chunks.
+        scene.params = gpu::Buffer();
+        scene.sh = gpu::Buffer();
+    }
+    run_chunked(camera, settings, read_back);
+}
+
+bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& settings, bool read_back) {
     const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
     const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
     frame.ensure_gaussians(scene.count);
@@ -226,8 +319,6 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
         frame.ensure_stats(scene.count);
     }
 
-    stats = {};
-    stats.gaussians = scene.count;
     for (;;) {
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
                                                        scene.half_sh, frame.entry_capacity);
@@ -244,15 +335,134 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
         if (grown > 0xffffffffu / 2)
             throw GpuError("view needs " + std::to_string(stats.tile_entries) +
                            " tile entries, more than one frame can sort");
+        if (has_host && scene_device_bytes() + projected_frame_bytes(scene.count, static_cast<uint32_t>(grown), pixels,
+                                                                     tiles, false, settings.gather_stats) > budget) {
+            stats = {};
+            stats.gaussians = scene.count;
+            return false;
+        }
         frame.ensure_entries(static_cast<uint32_t>(grown));
         ++stats.attempts;
     }
-    const auto times = stream.stage_times();
-    for (const auto& t : times) {
-        stats.stages.push_back({t.label, t.milliseconds});
-        stats.gpu_milliseconds += t.milliseconds;
+    add_stage_times();
+    stats.scene_bytes = scene_device_bytes();
+    stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
+    return true;
+}
+
+void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& settings, bool read_back) {
+    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
+    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const int degree = scene.sh_degree;
+    const bool half = scene.half_sh;
+    if (settings.gather_stats)
+        throw GpuError("per-Gaussian statistics need the whole scene on the device, which does not fit the memory "
+                       "budget of " + mebibytes(budget) + "; raise the budget (--memory-budget MB)");
+
+    // Frame bytes for a chunk of g Gaussians with e tile entries, from fresh buffers.
+    const auto need = [&](uint32_t g, uint32_t e) {
+        return render::GpuScene::bytes_for(g, degree, half) +
+               render::FrameResources::bytes_for(context, g, e, pixels, tiles, true);
+    };
+    const auto entries_for = [&](uint32_t g) {
+        return static_cast<uint32_t>(std::min(std::ceil(g * chunk_entries_per_gaussian), double(0x7fffffffu)));
+    };
+    if (need(1, entries_for(1)) > budget)
+        throw GpuError("memory budget of " + mebibytes(budget) + " is too small for a " + std::to_string(camera.width) +
+                       "x" + std::to_string(camera.height) + " frame: even a chunk of one Gaussian needs " +
+                       mebibytes(need(1, entries_for(1))) + " (mostly per-pixel buffers); raise --memory-budget");
+
+    const auto order = render::depth_order(host, render::make_camera_params(camera, settings, 0, degree, half, 0));
+    const uint32_t drawable = static_cast<uint32_t>(order.size());
+    // The largest chunk that fits, then chunks of equal size.
+    uint32_t lo = 1, hi = std::max(drawable, 1u);
+    while (lo < hi) {
+        const uint32_t mid = lo + (hi - lo + 1) / 2;
+        if (need(mid, entries_for(mid)) <= budget) lo = mid;
+        else hi = mid - 1;
     }
-    stats.scene_bytes = scene.params.size() + scene.sh.size();
+    const uint32_t chunk_count = (drawable + lo - 1) / lo;
+    const uint32_t chunk_size = chunk_count > 0 ? (drawable + chunk_count - 1) / chunk_count : 0;
+
+    // Buffers for that chunk size; start afresh if what is held already would exceed the budget.
+    const uint64_t held = render::GpuScene::bytes_for(std::max(chunk_size, chunks ? chunks->capacity : 0u), degree, half) +
+                          projected_frame_bytes(chunk_size, entries_for(chunk_size), pixels, tiles, true, false);
+    if (held > budget) {
+        chunks.reset();
+        frame = render::FrameResources(context);
+    }
+    if (!chunks || chunks->capacity < chunk_size) {
+        chunks.reset();
+        chunks = std::make_unique<render::SceneChunks>(context, chunk_size, degree, half);
+    }
+    frame.ensure_gaussians(chunk_size);
+    frame.ensure_entries(entries_for(chunk_size));
+    frame.ensure_image(pixels, tiles);
+    frame.ensure_carry(pixels);
+
+    // Ranges of `order`, front to back. A chunk whose tile entries overflow is drawn again with
+    // more entries, or split in two where more would not fit the budget.
+    std::deque<std::pair<uint32_t, uint32_t>> pending;
+    for (uint32_t c = 0; c < std::max(chunk_count, 1u); ++c)
+        pending.emplace_back(c * chunk_size, std::min(drawable, (c + 1) * chunk_size));
+    const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
+    uint32_t drawn = 0;
+    while (!pending.empty()) {
+        const auto [begin, end] = pending.front();
+        pending.pop_front();
+        std::vector<uint32_t> indices(order.begin() + begin, order.begin() + end);
+        std::sort(indices.begin(), indices.end());
+        chunks->stage(host, indices);
+        const bool last = pending.empty();
+        const uint32_t flags = (drawn > 0 ? render::kCarryLoad : 0u) | (last ? render::kCarryLast : 0u);
+        const auto params = render::make_camera_params(camera, settings, chunks->device.count, degree, half,
+                                                       frame.entry_capacity);
+        stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
+        stream.begin();
+        chunks->record_upload(stream);
+        record_passes(stream, params, chunks->device, false, &flags);
+        if (last && read_back) {
+            stream.copy(frame.color_alpha, frame.readback, uint64_t(pixels) * 16, 0, 0);
+            stream.copy(frame.depth, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
+            stream.copy(frame.contributors, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
+        }
+        stream.copy(frame.counters, frame.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
+        stream.submit_and_wait();
+        uint32_t counters[render::kCounterCount];
+        std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
+        const uint32_t needed = counters[render::kCounterEntriesNeeded];
+        if (needed <= frame.entry_capacity) {
+            add_stage_times();
+            stats.visible += counters[render::kCounterVisible];
+            stats.tile_entries += needed;
+            ++drawn;
+            continue;
+        }
+        // The blend drew nothing (blend_body.glsl): grow within the budget, else split the chunk.
+        ++stats.attempts;
+        const uint32_t count = end - begin;
+        chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
+        const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
+        const auto held_with = [&](uint32_t entries) {
+            return render::GpuScene::bytes_for(chunks->capacity, degree, half) +
+                   projected_frame_bytes(chunks->capacity, entries, pixels, tiles, true, false);
+        };
+        if (held_with(grown) <= budget) {
+            frame.ensure_entries(grown);
+            pending.emplace_front(begin, end);
+        } else if (held_with(needed) <= budget) {
+            frame.ensure_entries(needed);
+            pending.emplace_front(begin, end);
+        } else if (count > 1) {
+            pending.emplace_front(begin + count / 2, end);
+            pending.emplace_front(begin, begin + count / 2);
+        } else {
+            throw GpuError("memory budget of " + mebibytes(budget) + " is too small: one Gaussian needs " +
+                           std::to_string(needed) + " tile entries in this view; raise --memory-budget");
+        }
+    }
+    stats.chunks = drawn;
+    stats.scene_bytes = scene_device_bytes();
     stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
 }
 
@@ -271,6 +481,9 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
                                  const RenderTarget& target) {
     if (settings.gather_stats)
         throw std::invalid_argument("Renderer::record does not gather per-Gaussian statistics; use render()");
+    if (!scene.params)
+        throw GpuError("Renderer::record: the scene does not fit the memory budget of " + mebibytes(budget) +
+                       " and a recorded frame cannot be split into chunks; use render(), or a larger budget");
     const uint32_t pixel_bytes = render_target_pixel_bytes(target.format);
     if (pixel_bytes == 0)
         throw std::invalid_argument("Renderer::record: VkFormat " + std::to_string(target.format) +
@@ -307,7 +520,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
     stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
     gpu::CommandStream out(context, gpu::CommandStream::Recording{command_buffer});
     out.barrier_after_everything();
-    record_passes(out, params, false);
+    record_passes(out, params, scene, false);
     const gpu::Buffer* source = &frame.color_alpha;
     if (packs) {
         const bool bgra = target.format == VK_FORMAT_B8G8R8A8_UNORM || target.format == VK_FORMAT_B8G8R8A8_SRGB;
@@ -360,8 +573,27 @@ GaussianStats Renderer::Impl::read_stats() const {
 SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorage& storage) {
     GaussianCloud copy = cloud;
     SanitizeReport report = sanitize(copy);
-    impl_->wait_for_recorded_frames();
-    impl_->scene = render::GpuScene::upload(impl_->context, copy, storage);
+    auto& d = *impl_;
+    d.wait_for_recorded_frames();
+    d.scene = {};
+    d.chunks.reset();
+    d.host = render::HostScene::activate(copy);
+    d.budget = storage.memory_budget > 0 ? storage.memory_budget : d.context.memory_budget();
+    const bool budget_given = storage.memory_budget > 0 || d.context.impl().memory_budget > 0;
+    // Whole on the device if the scene and its per-Gaussian frame buffers fit (the image's size
+    // is not known yet: each frame checks again). Otherwise, or when the budget was given (so a
+    // frame may need chunks later), the host copy stays for chunked frames.
+    const uint32_t n = d.host.count;
+    const bool fits = render::GpuScene::bytes_for(n, d.host.sh_degree, storage.half_sh) +
+                          d.projected_frame_bytes(n, std::max(n, 1u) * kInitialEntriesPerGaussian, 1, 1, false, false) <=
+                      d.budget;
+    if (fits) d.scene = render::GpuScene::upload(d.context, d.host, storage);
+    d.scene.count = n;
+    d.scene.sh_degree = d.host.sh_degree;
+    d.scene.half_sh = storage.half_sh;
+    d.chunk_entries_per_gaussian = kInitialEntriesPerGaussian;
+    d.has_host = !fits || budget_given;
+    if (!d.has_host) d.host = {};
     impl_->input_count = cloud.size();
     impl_->kept_indices = report.kept_indices;
     return report;

@@ -20,6 +20,9 @@ struct DeviceInfo {
     uint32_t subgroup_size = 0;         // the default size compute shaders run with
     uint32_t min_subgroup_size = 0;     // smallest size the driver may pick (AMD: 32 vs 64)
     uint64_t device_local_bytes = 0;    // largest device-local heap
+    // What this process may use of that heap: VK_EXT_memory_budget's budget where the driver has
+    // it (the heap less what others hold), else the heap's size.
+    uint64_t device_local_budget = 0;
     float timestamp_period_ns = 0;      // 0 when the queue has no timestamps
     bool int64_atomics = false;         // 64-bit buffer atomics: needed for per-Gaussian statistics
     bool usable = false;                // has what vksplat needs (see unusable_reason)
@@ -34,6 +37,9 @@ struct ContextOptions {
     std::string device;
     // Enable VK_LAYER_KHRONOS_validation (with synchronisation validation) when installed.
     bool validation = false;
+    // Device memory vksplat may hold, in bytes; 0: the device's own limit (device_local_budget).
+    // A renderer whose frame would not fit renders it in depth-ordered chunks (SceneStorage).
+    uint64_t memory_budget = 0;
 };
 
 // An application's Vulkan objects, lent to vksplat (see Context(const AdoptedDevice&)). The
@@ -86,6 +92,8 @@ public:
     VkQueue queue() const;
     uint32_t queue_family() const;
     const DeviceInfo& info() const;
+    // ContextOptions::memory_budget, or the device's own limit when that is 0 (adopted devices too).
+    uint64_t memory_budget() const;
     // False for an adopted device.
     bool owns_device() const;
     // Validation messages (errors and warnings) seen so far; empty unless validation is on.

@@ -34,6 +34,7 @@ struct FrameStats {
     uint64_t device_bytes = 0;       // device memory the renderer holds
     uint64_t scene_bytes = 0;        // of which the scene's parameters and SH
     uint32_t tile_key_bits = 0;      // bits the tile sort sorted by
+    uint32_t chunks = 1;             // depth-ordered chunks the frame was split into (memory budget)
 };
 
 // How the scene is kept in device memory.
@@ -43,6 +44,15 @@ struct SceneStorage {
     // by about 1e-4 of its value (well under an 8-bit step); off by default so that renders stay
     // within float rounding of the reference rasterizer.
     bool half_sh = false;
+    // Device memory the renderer may hold, in bytes; 0: the context's budget (ContextOptions::
+    // memory_budget, else the device's own limit). A frame that does not fit is rendered in K
+    // chunks: the scene stays in host memory, is split by view depth (as the depth sort orders
+    // it) and each chunk is uploaded and blended front to back, every pixel carrying its colour,
+    // transmittance, depth sum, contributor count and whether it stopped to the next chunk, so
+    // the picture is the unchunked one. Peak device memory (FrameStats::device_bytes) stays
+    // within the budget. Chunked frames cannot gather per-Gaussian statistics or be record()ed
+    // (both throw GpuError), and cost an upload of the scene per frame.
+    uint64_t memory_budget = 0;
 };
 
 class Renderer {
