@@ -22,10 +22,6 @@ uint32_t find_memory_type(const VkPhysicalDeviceMemoryProperties& memory, uint32
     return static_cast<uint32_t>(fallback);
 }
 
-std::string megabytes(VkDeviceSize bytes) {
-    return std::to_string((bytes + (1 << 20) - 1) >> 20) + " MiB";
-}
-
 }  // namespace
 
 Buffer::Buffer(const Context& context, VkDeviceSize size, MemoryKind kind, std::string name)
@@ -65,10 +61,7 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, MemoryKind kind, std::
         alloc.memoryTypeIndex = find_memory_type(d.memory, requirements.memoryTypeBits, required, preferred);
         const VkResult result = d.vk.vkAllocateMemory(d.device, &alloc, nullptr, &memory_);
         if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
-            throw GpuError(std::string(result == VK_ERROR_OUT_OF_HOST_MEMORY ? "out of host memory" : "out of GPU memory") +
-                           " allocating " + std::to_string(alloc_size) + " bytes (" + megabytes(alloc_size) +
-                           ") for '" + name_ + "' on " + d.info.name + " (" + megabytes(d.info.device_local_bytes) +
-                           " device-local); " + kMemoryBudgetHint);
+            throw GpuError(out_of_memory_message(result, name_, alloc_size, d.info));
         check(result, "vkAllocateMemory");
         VKSPLAT_VK(d.vk.vkBindBufferMemory(d.device, buffer_, memory_, 0));
         if (kind != MemoryKind::device)

@@ -32,4 +32,12 @@ void throw_vk_error(VkResult result, const char* call) {
     throw GpuError(message);
 }
 
+std::string out_of_memory_message(VkResult result, const std::string& what, uint64_t bytes, const DeviceInfo& device) {
+    const auto mebibytes = [](uint64_t b) { return std::to_string((b + (1 << 20) - 1) >> 20) + " MiB"; };
+    return std::string(result == VK_ERROR_OUT_OF_HOST_MEMORY ? "out of host memory" : "out of GPU memory") +
+           " allocating " + std::to_string(bytes) + " bytes (" + mebibytes(bytes) + ") for '" + what + "' on " +
+           device.name + " (" + mebibytes(device.device_local_bytes) + " device-local): " + result_name(result) +
+           "; " + kMemoryBudgetHint;
+}
+
 }  // namespace vksplat::gpu

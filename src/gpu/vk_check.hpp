@@ -6,6 +6,7 @@
 #include <string>
 
 #include "vksplat/error.hpp"
+#include "vksplat/gpu/context.hpp"
 
 namespace vksplat::gpu {
 
@@ -16,6 +17,8 @@ inline constexpr const char* kMemoryBudgetHint =
 
 const char* result_name(VkResult result);
 [[noreturn]] void throw_vk_error(VkResult result, const char* call);
+// The message for an allocation of `bytes` for `what` that failed with an out-of-memory result.
+std::string out_of_memory_message(VkResult result, const std::string& what, uint64_t bytes, const DeviceInfo& device);
 
 inline void check(VkResult result, const char* call) {
     if (result != VK_SUCCESS) throw_vk_error(result, call);

@@ -64,6 +64,7 @@ BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& c
         bench.tile_entries = last.tile_entries;
         bench.tile_key_bits = last.tile_key_bits;
         bench.device_bytes = last.device_bytes;
+        bench.chunks = last.chunks;
         bench.scene_bytes = last.scene_bytes;
         result.views.push_back(bench);
         result.mean_of_medians_ms += bench.median_ms;

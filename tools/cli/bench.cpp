@@ -33,9 +33,10 @@ std::array<int, 2> parse_grid(const std::string& text) {
 }
 
 void print_view(const jobs::ViewBenchmark& v, const std::optional<jobs::DeviceRates>& rates) {
-    std::printf("view %zu %dx%d: median %.3f ms, min %.3f ms, visible %u, tile entries %u, device memory %.1f MiB\n",
+    std::printf("view %zu %dx%d: median %.3f ms, min %.3f ms, visible %u, tile entries %u, device memory %.1f MiB%s\n",
                 v.view, v.width, v.height, v.median_ms, v.min_ms, v.visible, v.tile_entries,
-                double(v.device_bytes) / (1 << 20));
+                double(v.device_bytes) / (1 << 20),
+                v.chunks > 1 ? (", " + std::to_string(v.chunks) + " chunks").c_str() : "");
     for (const auto& s : v.stages) std::printf("    %-14s %8.3f ms (min %.3f)\n", s.stage.c_str(), s.median_ms, s.min_ms);
     if (rates) {
         const jobs::FrameFloor f = jobs::frame_floor(jobs::frame_work(v), *rates);

@@ -2,6 +2,8 @@
 // Each subcommand lives in its own file and registers itself on the app; main() only wires them.
 #include <CLI/CLI.hpp>
 
+#include <algorithm>
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -16,9 +18,18 @@ using Action = std::function<int()>;
 struct GpuOptions {
     std::string device;
     bool validation = false;
-    gpu::ContextOptions context_options() const { return {device, validation}; }
+    double memory_budget_mb = 0;  // --memory-budget: 0 is the device's own limit
+    gpu::ContextOptions context_options() const {
+        return {device, validation, static_cast<uint64_t>(memory_budget_mb * 1048576.0)};
+    }
 };
 void add_gpu_options(CLI::App& command, GpuOptions& options);
+// Tracks the most depth-ordered chunks any frame needed (--memory-budget) and says so once.
+struct ChunkReport {
+    uint32_t most = 1;
+    void saw(uint32_t chunks) { most = std::max(most, chunks); }
+    void print(const gpu::Context& context) const;
+};
 
 // Parses argv and runs the action of the chosen subcommand, reporting errors; the exit code.
 int run_cli(CLI::App& app, const Action& action, int argc, char** argv);

@@ -34,8 +34,12 @@ int run_demo(const DemoArgs& args) {
     std::fprintf(stderr, "rendering the demo scene (%zu Gaussians) on %s\n", cloud.size(),
                  context.info().name.c_str());
     ProgressLine progress("rendered");
-    const auto result = jobs::render_views(renderer, cameras, options,
-                                           [&](size_t done, size_t total) { progress.update(done, total); });
+    ChunkReport chunks;
+    const auto result = jobs::render_views(renderer, cameras, options, [&](size_t done, size_t total) {
+        chunks.saw(renderer.last_frame().chunks);
+        progress.update(done, total);
+    });
+    chunks.print(context);
     // The scene itself too, so the other commands can be tried on it.
     io::write_ply(cloud, options.out_dir / "demo.ply", options.mode);
     double total_ms = 0;

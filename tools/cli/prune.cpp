@@ -96,9 +96,17 @@ int run_prune(const PruneArgs& args) {
                  context.info().name.c_str());
     ProgressLine scoring("scored views");
     jobs::PruneProgress progress;
-    progress.scoring = [&](size_t done, size_t total) { scoring.update(done, total); };
-    progress.probe = print_probe;
+    ChunkReport chunks;
+    progress.scoring = [&](size_t done, size_t total) {
+        chunks.saw(renderer.last_frame().chunks);
+        scoring.update(done, total);
+    };
+    progress.probe = [&](const prune::BudgetProbe& probe) {
+        chunks.saw(renderer.last_frame().chunks);
+        print_probe(probe);
+    };
     const jobs::PruneResult result = jobs::prune_scene(renderer, cloud, cameras, options, progress);
+    chunks.print(context);
     if (result.sanitize.changed())
         std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), result.sanitize.summary().c_str());
     if (!result.lossless_applied)

@@ -45,8 +45,12 @@ int run_render(const RenderArgs& args) {
 
     std::fprintf(stderr, "rendering %zu Gaussians on %s\n", renderer.scene_size(), context.info().name.c_str());
     ProgressLine progress("rendered");
-    const auto result = jobs::render_views(renderer, cameras, options,
-                                           [&](size_t done, size_t total) { progress.update(done, total); });
+    ChunkReport chunks;
+    const auto result = jobs::render_views(renderer, cameras, options, [&](size_t done, size_t total) {
+        chunks.saw(renderer.last_frame().chunks);
+        progress.update(done, total);
+    });
+    chunks.print(context);
     std::printf("wrote %zu views to %s\n", result.views.size(), args.out.c_str());
     if (result.has_metrics)
         std::printf("mean PSNR %.3f dB, mean SSIM %.4f over %zu views (%s)\n", result.mean_psnr, result.mean_ssim,

@@ -66,12 +66,15 @@ int run_sweep(const SweepArgs& args) {
     std::unique_ptr<ProgressLine> line;
     std::string stage;
     jobs::SweepProgress progress;
+    ChunkReport chunks;
     progress.step = [&](const std::string& name, size_t done, size_t total) {
+        chunks.saw(renderer.last_frame().chunks);
         if (name != stage || !line) line = std::make_unique<ProgressLine>(name), stage = name;
         line->update(done, total);
     };
     progress.row = print_row;
     const jobs::SweepResult result = jobs::sweep_scene(renderer, cloud, cameras, options, progress);
+    chunks.print(context);
 
     std::printf("unpruned: PSNR %.3f dB, SSIM %.4f, %.2f ms per frame, %.2f MB\n", result.unpruned.psnr,
                 result.unpruned.ssim, result.unpruned.ms_per_frame, double(result.unpruned.bytes) / 1e6);

@@ -29,6 +29,7 @@ struct ViewBenchmark {
     std::vector<StageSummary> stages;
     uint32_t visible = 0, tile_entries = 0, tile_key_bits = 0;
     uint64_t device_bytes = 0, scene_bytes = 0;
+    uint32_t chunks = 1;                // depth-ordered chunks per frame (memory budget)
 };
 
 struct BenchmarkResult {
