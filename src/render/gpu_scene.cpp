@@ -23,7 +23,7 @@ std::vector<uint32_t> pack_halves(std::span<const float> values) {
     return words;
 }
 
-HostScene HostScene::activate(const GaussianCloud& cloud) {
+HostScene HostScene::activate(GaussianCloud cloud) {
     cloud.check_consistent();
     if (cloud.size() > std::numeric_limits<uint32_t>::max() / 64)
         throw InputError("scene", "too many Gaussians for one GPU scene (" + std::to_string(cloud.size()) + ")");
@@ -44,7 +44,7 @@ HostScene HostScene::activate(const GaussianCloud& cloud) {
     host.count = static_cast<uint32_t>(n);
     host.sh_degree = cloud.sh_degree;
     host.params = std::move(params);
-    host.sh = cloud.sh;
+    host.sh = std::move(cloud.sh);
     return host;
 }
 

@@ -19,7 +19,8 @@ struct HostScene {
     std::vector<float> params;  // 12 floats per Gaussian, laid out as GpuScene::params
     std::vector<float> sh;      // sh_floats() per Gaussian, [coefficient][rgb]
 
-    static HostScene activate(const GaussianCloud& cloud);
+    // Takes the cloud by value so that a caller's temporary gives up its SH without a copy.
+    static HostScene activate(GaussianCloud cloud);
     uint32_t sh_floats() const { return static_cast<uint32_t>(sh_coefficients_for_degree(sh_degree)) * 3; }
 };
 

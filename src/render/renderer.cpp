@@ -44,6 +44,7 @@ constexpr double kEntryGrowth = 1.25;
 uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
 
 std::string mebibytes(uint64_t bytes) {
+    if (bytes < (1 << 20)) return std::to_string(bytes) + " bytes";
     char text[32];
     std::snprintf(text, sizeof(text), "%.1f MiB", double(bytes) / (1 << 20));
     return text;
@@ -577,7 +578,7 @@ SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorag
     d.wait_for_recorded_frames();
     d.scene = {};
     d.chunks.reset();
-    d.host = render::HostScene::activate(copy);
+    d.host = render::HostScene::activate(std::move(copy));
     d.budget = storage.memory_budget > 0 ? storage.memory_budget : d.context.memory_budget();
     const bool budget_given = storage.memory_budget > 0 || d.context.impl().memory_budget > 0;
     // Whole on the device if the scene and its per-Gaussian frame buffers fit (the image's size

@@ -45,6 +45,17 @@ mkdir -p "$work/photos" && cp "$work/render/top.png" "$work/photos/top.png"
 expect render-metrics 0 "mean PSNR" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/cameras.json" \
   --out "$work/scored" --images "$work/photos" --background 1,1,1
 
+# A memory budget: the frame goes in depth-ordered chunks and the files are the same; a budget too
+# small for even one chunk is a clear error.
+expect render-budget 0 "depth-ordered chunks" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --out "$work/chunked" --depth --alpha --background 1,1,1 --memory-budget 2
+for file in top.png top.alpha.png top.depth.npy; do
+  cmp -s "$work/render/$file" "$work/chunked/$file" && passed=$((passed + 1)) ||
+    { failed=$((failed + 1)); echo "FAILED: chunked $file differs from the whole render"; }
+done
+expect render-budget-too-small any-failure "is too small for a 80x60 frame" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --out "$work/tiny" --memory-budget 0.01
+
 # Prune: by ratio (saving the view totals), the refusal to overwrite, and a PSNR budget re-scored
 # from the saved totals against the photo.
 expect prune 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \

@@ -161,6 +161,21 @@ TEST_F(ChunkedRender, HalfPrecisionShChunksMatchTheWholeFrame) {
     EXPECT_GE(chunked.last_frame().chunks, 4u);
 }
 
+TEST_F(ChunkedRender, AViewWithNothingInFrontIsTheBackground) {
+    GaussianCloud cloud = random_scene(37, 3000, 0);
+    for (size_t i = 0; i < cloud.size(); ++i) cloud.positions[3 * i + 2] *= -1.0f;  // all behind the camera
+    const Camera camera = forward_camera(32, 32, 30.0);
+    RenderSettings settings;
+    settings.background = {0.25f, 0.5f, 0.75f};
+    FrameStats stats;
+    const RenderOutput whole = render_with(cloud, camera, settings, 0);
+    const RenderOutput chunked =
+        render_with(cloud, camera, settings, budget_for_chunk(500, 3000, 0, camera), &stats);
+    EXPECT_EQ(stats.visible, 0u);
+    EXPECT_EQ(chunked.rgb[0], 0.25f);
+    expect_same_picture(whole, chunked);
+}
+
 TEST_F(ChunkedRender, ABudgetTooSmallForOneChunkIsAClearError) {
     Renderer renderer(context());
     renderer.set_scene(random_scene(34, 100, 0), SceneStorage{.memory_budget = 4096});
