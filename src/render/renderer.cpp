@@ -272,7 +272,7 @@ uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entr
 
 const gpu::ComputePipeline& Renderer::Impl::carry_pipeline() {
     if (!blend_carry)
-        blend_carry = std::make_unique<gpu::ComputePipeline>(context, words(blend_carry_spv), sizeof(render::BlendCarryPush),
+        blend_carry = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_carry_spv), sizeof(render::BlendCarryPush),
                                                              std::vector<uint32_t>{}, "blend_carry");
     return *blend_carry;
 }
