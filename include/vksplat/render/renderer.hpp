@@ -49,9 +49,16 @@ struct SceneStorage {
     // chunks: the scene stays in host memory, is split by view depth (as the depth sort orders
     // it) and each chunk is uploaded and blended front to back, every pixel carrying its colour,
     // transmittance, depth sum, contributor count and whether it stopped to the next chunk, so
-    // the picture is the unchunked one. Peak device memory (FrameStats::device_bytes) stays
-    // within the budget. Chunked frames cannot gather per-Gaussian statistics or be record()ed
-    // (both throw GpuError), and cost an upload of the scene per frame.
+    // the picture is the unchunked one. Bound: FrameStats::device_bytes, every device buffer the
+    // renderer holds (scene or chunk, frame buffers, sort and scan scratch, carried state), stays
+    // within the budget, also while buffers grow; not counted are the driver's rounding of each
+    // allocation, pipelines and command buffers, and the host-visible staging and readback
+    // buffers. The host then holds the activated scene (48 bytes + SH per Gaussian) and a staging
+    // copy of one chunk. Once a frame has needed chunks the scene stays on the host. Chunked
+    // frames cannot gather per-Gaussian statistics or be record()ed (both throw GpuError), and
+    // cost an upload of the scene per frame. With the default budget and a scene that fits, no
+    // host copy is kept: a frame beyond the device's limit then fails with an out-of-memory
+    // GpuError that suggests a budget.
     uint64_t memory_budget = 0;
 };
 
