@@ -1,9 +1,9 @@
 #ifndef GATHER_STATS
 #error define GATHER_STATS before including blend_body.glsl
 #endif
-// CARRY_STATE 1 (blend_carry.comp): one depth-ordered chunk of a frame too large for the memory
-// budget. The pixel state is loaded from the previous chunk and, except after the last chunk,
-// stored for the next one instead of the finished pixel (see the CARRY_ blocks below).
+// CARRY_STATE 1 (blend_carry.comp, blend_stats_carry.comp): one depth-ordered chunk of a frame
+// too large for the memory budget. The pixel state is loaded from the previous chunk and, except
+// after the last chunk, stored for the next one instead of the finished pixel (the CARRY_ blocks).
 #ifndef CARRY_STATE
 #define CARRY_STATE 0
 #endif
@@ -77,10 +77,11 @@ layout(push_constant) uniform Push {
     Uints stat_centre_weight;  // per Gaussian: alpha * T at the pixel holding its centre (float bits)
 #endif
 #if CARRY_STATE
+    // Two buffers and a word, so that even the statistics variant stays within the 128 bytes of
+    // push constants every device has.
     Vec4s carried_color;          // colour so far (rgb, no background) and transmittance (a)
-    Floats carried_depth;         // sum of depth * weight so far
-    Uints carried_contributors;   // splats blended so far; CARRY_STOPPED once the pixel stopped
-    Uints counters;               // the frame counters (frame.glsl)
+    Vec2s carried_depth_count;    // sum of depth * weight so far; splats blended so far as uint
+                                  // bits, with CARRY_STOPPED once the pixel stopped
     uint carry_flags;             // CARRY_LOAD | CARRY_LAST
 #endif
 } pc;
@@ -183,15 +184,13 @@ void main() {
 
     PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, !inside);
 #if CARRY_STATE
-    // A chunk whose tile entries overflowed their buffers is rendered again once they have
-    // grown: leave the carried state as it is (a uniform exit, before any barrier).
-    if (pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity) return;
     if (inside && (pc.carry_flags & CARRY_LOAD) != 0u) {
         const uint index = pixel.y * cam.size.x + pixel.x;
         const vec4 carried = pc.carried_color.v[index];
-        const uint contributors = pc.carried_contributors.v[index];
+        const vec2 depth_count = pc.carried_depth_count.v[index];
+        const uint contributors = floatBitsToUint(depth_count.y);
         // A pixel that stopped stays stopped.
-        state = PixelState(carried.rgb, carried.a, pc.carried_depth.v[index], contributors & ~CARRY_STOPPED,
+        state = PixelState(carried.rgb, carried.a, depth_count.x, contributors & ~CARRY_STOPPED,
                            (contributors & CARRY_STOPPED) != 0u);
     }
 #endif
@@ -251,8 +250,8 @@ void main() {
 #if CARRY_STATE
         if ((pc.carry_flags & CARRY_LAST) == 0u) {
             pc.carried_color.v[index] = vec4(state.color, state.transmittance);
-            pc.carried_depth.v[index] = state.depth_sum;
-            pc.carried_contributors.v[index] = state.contributors | (state.done ? CARRY_STOPPED : 0u);
+            pc.carried_depth_count.v[index] =
+                vec2(state.depth_sum, uintBitsToFloat(state.contributors | (state.done ? CARRY_STOPPED : 0u)));
             return;
         }
 #endif

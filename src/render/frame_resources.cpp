@@ -99,8 +99,7 @@ void FrameResources::ensure_carry(uint32_t pixels) {
     if (pixels <= carry_capacity) return;
     const auto& c = *context;
     replace(carried_color, c, uint64_t(pixels) * 16, "carried colour and transmittance");
-    replace(carried_depth, c, uint64_t(pixels) * 4, "carried depth sums");
-    replace(carried_contributors, c, uint64_t(pixels) * 4, "carried contributor counts");
+    replace(carried_depth_count, c, uint64_t(pixels) * 8, "carried depth sums and contributor counts");
     carry_capacity = pixels;
 }
 
@@ -137,7 +136,7 @@ uint64_t FrameResources::device_bytes() const {
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
                                  &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels,
-                                 &stat_centre_weight, &carried_color, &carried_depth, &carried_contributors})
+                                 &stat_centre_weight, &carried_color, &carried_depth_count})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

@@ -41,7 +41,7 @@ struct FrameResources {
     // Per-pixel state carried from one depth-ordered chunk to the next (frames larger than the
     // memory budget; allocated on the first such frame).
     uint32_t carry_capacity = 0;
-    gpu::Buffer carried_color, carried_depth, carried_contributors;
+    gpu::Buffer carried_color, carried_depth_count;
 
     // Frames recorded into an application's command buffer (Renderer::record).
     uint32_t packed_capacity = 0;

@@ -57,18 +57,27 @@ struct BlendStatsPush {
     BlendPush blend;
     Address stat_weight, stat_max_weight, stat_pixels, stat_centre_weight;
 };
-// The chunk variant (blend_carry.comp): the carried per-pixel state, the frame counters and the
-// CARRY_ flags of blend_body.glsl.
+// The chunk variants (blend_carry.comp, blend_stats_carry.comp): the carried per-pixel state and
+// the CARRY_ flags of blend_body.glsl.
+struct CarryPush {
+    Address carried_color, carried_depth_count;
+    uint32_t flags;
+};
 struct BlendCarryPush {
     BlendPush blend;
-    Address carried_color, carried_depth, carried_contributors, counters;
-    uint32_t flags;
+    CarryPush carry;
+};
+struct BlendStatsCarryPush {
+    BlendStatsPush stats;
+    CarryPush carry;
 };
 constexpr uint32_t kCarryLoad = 1, kCarryLast = 2;
 void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendPush& push,
                   uint32_t tiles_x, uint32_t tiles_y);
 void record_blend_carry(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendCarryPush& push,
                         uint32_t tiles_x, uint32_t tiles_y);
+void record_blend_stats_carry(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
+                              const BlendStatsCarryPush& push, uint32_t tiles_x, uint32_t tiles_y);
 void record_blend_stats(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                         const BlendStatsPush& push, uint32_t tiles_x, uint32_t tiles_y);
 

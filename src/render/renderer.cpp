@@ -21,6 +21,7 @@
 #include "render/target_copy.hpp"
 #include "shaders/blend.spv.h"
 #include "shaders/blend_carry.spv.h"
+#include "shaders/blend_stats_carry.spv.h"
 #include "shaders/blend_stats.spv.h"
 #include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
@@ -61,7 +62,7 @@ struct Renderer::Impl {
     gpu::CommandStream stream;
     std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
     std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
-    std::unique_ptr<gpu::ComputePipeline> blend_carry;  // built on the first frame rendered in chunks
+    std::unique_ptr<gpu::ComputePipeline> blend_carry, blend_stats_carry;  // built on first use (chunked frames)
     bool recorded = false;                               // record() was called: frames may be in flight
     render::GpuScene scene;  // params and sh are empty while the scene lives on the host only (chunked frames)
     // Device memory the renderer may hold (SceneStorage::memory_budget, else the context's).
@@ -96,10 +97,15 @@ struct Renderer::Impl {
     VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
 
     // Everything from the per-frame parameters to the blended image of `source` (the scene, or one
-    // chunk of it), recorded into `stream`. With carry_flags (blend_body.glsl's CARRY_ flags) the
-    // blend continues from, and except for the last chunk stores, the carried pixel state.
+    // chunk of it), recorded into `stream`: the passes up to the tile ranges, then the blend.
     void record_passes(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
-                       bool gather_stats, const uint32_t* carry_flags = nullptr);
+                       bool gather_stats);
+    void record_tiles(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
+                      bool gather_stats);
+    // With carry_flags (blend_body.glsl's CARRY_ flags) the blend continues from, and except for
+    // the last chunk stores, the carried pixel state.
+    void record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y, bool gather_stats,
+                           const uint32_t* carry_flags = nullptr);
     void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
     void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                      const RenderTarget& target);
@@ -117,10 +123,15 @@ struct Renderer::Impl {
     uint64_t projected_frame_bytes(uint32_t gaussians, uint32_t entries, uint32_t pixels, uint32_t tiles, bool carry,
                                    bool gather_stats) const;
     uint64_t scene_device_bytes() const;
-    const gpu::ComputePipeline& carry_pipeline();
+    const gpu::ComputePipeline& carry_pipeline(bool gather_stats);
     void add_stage_times();
     const gpu::ComputePipeline& stats_pipeline();
-    GaussianStats read_stats() const;
+    // Per-Gaussian statistics of `count` Gaussians to the readback, and from there into `out`
+    // (indexed like the input cloud), Gaussian i of the frame being the scene's uploaded[i]
+    // (i itself where uploaded is null).
+    void copy_stats(gpu::CommandStream& stream, uint32_t count);
+    void unpack_stats(uint32_t count, const uint32_t* uploaded, GaussianStats& out) const;
+    GaussianStats gathered;  // the last frame's statistics
 };
 
 const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
@@ -135,7 +146,13 @@ const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
 }
 
 void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::CameraParams& params,
-                                   const render::GpuScene& source, bool gather_stats, const uint32_t* carry_flags) {
+                                   const render::GpuScene& source, bool gather_stats) {
+    record_tiles(stream, params, source, gather_stats);
+    record_blend_pass(stream, params.size[2], params.size[3], gather_stats);
+}
+
+void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::CameraParams& params,
+                                  const render::GpuScene& source, bool gather_stats) {
     using namespace render;
     const uint32_t n = source.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
@@ -210,21 +227,26 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
                        f.counters, kCounterEntryArgs * sizeof(uint32_t));
     stream.barrier();
     stream.mark("ranges");
+}
 
+void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y,
+                                       bool gather_stats, const uint32_t* carry_flags) {
+    using namespace render;
+    auto& f = frame;
     const BlendPush blend_push{f.camera.address(),      f.ranges.address(),        f.tile_values.address(),
                                f.means_depth.address(), f.conic_opacity.address(), f.colors.address(),
                                f.color_alpha.address(), f.depth.address(),         f.contributors.address()};
-    if (carry_flags)
-        record_blend_carry(stream, carry_pipeline(),
-                           {blend_push, f.carried_color.address(), f.carried_depth.address(),
-                            f.carried_contributors.address(), f.counters.address(), *carry_flags},
-                           tiles_x, tiles_y);
-    else if (gather_stats)
-        record_blend_stats(stream, *blend_stats,
-                           {blend_push, f.stat_weight.address(), f.stat_max_weight.address(), f.stat_pixels.address(),
-                            f.stat_centre_weight.address()},
-                           tiles_x, tiles_y);
-    else
+    const BlendStatsPush stats_push{blend_push, f.stat_weight.address(), f.stat_max_weight.address(),
+                                    f.stat_pixels.address(), f.stat_centre_weight.address()};
+    if (carry_flags) {
+        const CarryPush carry{f.carried_color.address(), f.carried_depth_count.address(), *carry_flags};
+        if (gather_stats)
+            record_blend_stats_carry(stream, carry_pipeline(true), {stats_push, carry}, tiles_x, tiles_y);
+        else
+            record_blend_carry(stream, carry_pipeline(false), {blend_push, carry}, tiles_x, tiles_y);
+    } else if (gather_stats) {
+        record_blend_stats(stream, *blend_stats, stats_push, tiles_x, tiles_y);
+    } else
         record_blend(stream, blend, blend_push, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
@@ -236,14 +258,7 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     auto& f = frame;
     stream.begin();
     record_passes(stream, params, scene, gather_stats);
-    if (gather_stats) {
-        const uint64_t g = n;
-        stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
-        stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 16);
-        stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 24);
-        stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 28);
-        stream.copy(f.stat_centre_weight, f.stats_readback, g * 4, 0, g * 32);
-    }
+    if (gather_stats) copy_stats(stream, n);
 
     const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
     if (read_back) {
@@ -270,10 +285,19 @@ uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entr
            uint64_t(carried) * 24 + stats_count * 20 + f.packed.size();
 }
 
-const gpu::ComputePipeline& Renderer::Impl::carry_pipeline() {
+const gpu::ComputePipeline& Renderer::Impl::carry_pipeline(bool gather_stats) {
+    if (gather_stats) {
+        stats_pipeline();  // the same device check
+        if (!blend_stats_carry)
+            blend_stats_carry = std::make_unique<gpu::ComputePipeline>(
+                context, gpu::spirv_words(blend_stats_carry_spv), sizeof(render::BlendStatsCarryPush),
+                std::vector<uint32_t>{}, "blend_stats_carry");
+        return *blend_stats_carry;
+    }
     if (!blend_carry)
-        blend_carry = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_carry_spv), sizeof(render::BlendCarryPush),
-                                                             std::vector<uint32_t>{}, "blend_carry");
+        blend_carry = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_carry_spv),
+                                                             sizeof(render::BlendCarryPush), std::vector<uint32_t>{},
+                                                             "blend_carry");
     return *blend_carry;
 }
 
@@ -346,6 +370,11 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         ++stats.attempts;
     }
     add_stage_times();
+    if (settings.gather_stats) {
+        gathered = {};
+        gathered.resize(input_count);
+        unpack_stats(scene.count, nullptr, gathered);
+    }
     stats.scene_bytes = scene_device_bytes();
     stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
     return true;
@@ -356,14 +385,14 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
     const int degree = scene.sh_degree;
     const bool half = scene.half_sh;
-    if (settings.gather_stats)
-        throw GpuError("per-Gaussian statistics need the whole scene on the device, which does not fit the memory "
-                       "budget of " + mebibytes(budget) + "; raise the budget (--memory-budget MB)");
+    const bool with_stats = settings.gather_stats;
+    if (with_stats) carry_pipeline(true);  // fails early on a device without 64-bit atomics
 
-    // Frame bytes for a chunk of g Gaussians with e tile entries, from fresh buffers.
+    // Device bytes for a chunk of g Gaussians with e tile entries, from fresh buffers.
     const auto need = [&](uint32_t g, uint32_t e) {
         return render::GpuScene::bytes_for(g, degree, half) +
-               render::FrameResources::bytes_for(context, g, e, pixels, tiles, true);
+               render::FrameResources::bytes_for(context, g, e, pixels, tiles, true) +
+               (with_stats ? uint64_t(std::max(g, 1u)) * 20 : 0);
     };
     const auto entries_for = [&](uint32_t g) {
         return static_cast<uint32_t>(std::min(std::ceil(g * chunk_entries_per_gaussian), double(0x7fffffffu)));
@@ -386,9 +415,11 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const uint32_t chunk_size = chunk_count > 0 ? (drawable + chunk_count - 1) / chunk_count : 0;
 
     // Buffers for that chunk size; start afresh if what is held already would exceed the budget.
-    const uint64_t held = render::GpuScene::bytes_for(std::max(chunk_size, chunks ? chunks->capacity : 0u), degree, half) +
-                          projected_frame_bytes(chunk_size, entries_for(chunk_size), pixels, tiles, true, false);
-    if (held > budget) {
+    const auto held_with = [&](uint32_t gaussians, uint32_t entries) {
+        return render::GpuScene::bytes_for(std::max(gaussians, chunks ? chunks->capacity : 0u), degree, half) +
+               projected_frame_bytes(gaussians, entries, pixels, tiles, true, with_stats);
+    };
+    if (held_with(chunk_size, entries_for(chunk_size)) > budget) {
         chunks.reset();
         frame = render::FrameResources(context);
     }
@@ -400,9 +431,16 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     frame.ensure_entries(entries_for(chunk_size));
     frame.ensure_image(pixels, tiles);
     frame.ensure_carry(pixels);
+    if (with_stats) {
+        frame.ensure_stats(chunk_size);
+        gathered = {};
+        gathered.resize(input_count);
+    }
 
-    // Ranges of `order`, front to back. A chunk whose tile entries overflow is drawn again with
-    // more entries, or split in two where more would not fit the budget.
+    // Ranges of `order`, front to back. Each chunk is two submissions: the passes up to the tile
+    // ranges, then, once its tile entries are known to fit, the blend. A chunk whose entries
+    // overflow is sorted again with more entries, or split in two where more would not fit the
+    // budget; the carried state is untouched until its blend.
     std::deque<std::pair<uint32_t, uint32_t>> pending;
     for (uint32_t c = 0; c < std::max(chunk_count, 1u); ++c)
         pending.emplace_back(c * chunk_size, std::min(drawable, (c + 1) * chunk_size));
@@ -414,53 +452,55 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         std::vector<uint32_t> indices(order.begin() + begin, order.begin() + end);
         std::sort(indices.begin(), indices.end());
         chunks->stage(host, indices);
-        const bool last = pending.empty();
-        const uint32_t flags = (drawn > 0 ? render::kCarryLoad : 0u) | (last ? render::kCarryLast : 0u);
         const auto params = render::make_camera_params(camera, settings, chunks->device.count, degree, half,
                                                        frame.entry_capacity);
         stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
         stream.begin();
         chunks->record_upload(stream);
-        record_passes(stream, params, chunks->device, false, &flags);
+        record_tiles(stream, params, chunks->device, with_stats);
+        stream.copy(frame.counters, frame.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
+        stream.submit_and_wait();
+        add_stage_times();
+        uint32_t counters[render::kCounterCount];
+        std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
+        const uint32_t needed = counters[render::kCounterEntriesNeeded];
+        const uint32_t count = end - begin;
+        if (needed > frame.entry_capacity) {
+            ++stats.attempts;
+            chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
+            const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
+            if (held_with(chunks->capacity, grown) <= budget) {
+                frame.ensure_entries(grown);
+                pending.emplace_front(begin, end);
+            } else if (held_with(chunks->capacity, needed) <= budget) {
+                frame.ensure_entries(needed);
+                pending.emplace_front(begin, end);
+            } else if (count > 1) {
+                pending.emplace_front(begin + count / 2, end);
+                pending.emplace_front(begin, begin + count / 2);
+            } else {
+                throw GpuError("memory budget of " + mebibytes(budget) + " is too small: one Gaussian needs " +
+                               std::to_string(needed) + " tile entries in this view; raise --memory-budget");
+            }
+            continue;
+        }
+
+        const bool last = pending.empty();
+        const uint32_t flags = (drawn > 0 ? render::kCarryLoad : 0u) | (last ? render::kCarryLast : 0u);
+        stream.begin();
+        record_blend_pass(stream, params.size[2], params.size[3], with_stats, &flags);
+        if (with_stats) copy_stats(stream, count);
         if (last && read_back) {
             stream.copy(frame.color_alpha, frame.readback, uint64_t(pixels) * 16, 0, 0);
             stream.copy(frame.depth, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
             stream.copy(frame.contributors, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
         }
-        stream.copy(frame.counters, frame.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
         stream.submit_and_wait();
-        uint32_t counters[render::kCounterCount];
-        std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
-        const uint32_t needed = counters[render::kCounterEntriesNeeded];
-        if (needed <= frame.entry_capacity) {
-            add_stage_times();
-            stats.visible += counters[render::kCounterVisible];
-            stats.tile_entries += needed;
-            ++drawn;
-            continue;
-        }
-        // The blend drew nothing (blend_body.glsl): grow within the budget, else split the chunk.
-        ++stats.attempts;
-        const uint32_t count = end - begin;
-        chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
-        const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
-        const auto held_with = [&](uint32_t entries) {
-            return render::GpuScene::bytes_for(chunks->capacity, degree, half) +
-                   projected_frame_bytes(chunks->capacity, entries, pixels, tiles, true, false);
-        };
-        if (held_with(grown) <= budget) {
-            frame.ensure_entries(grown);
-            pending.emplace_front(begin, end);
-        } else if (held_with(needed) <= budget) {
-            frame.ensure_entries(needed);
-            pending.emplace_front(begin, end);
-        } else if (count > 1) {
-            pending.emplace_front(begin + count / 2, end);
-            pending.emplace_front(begin, begin + count / 2);
-        } else {
-            throw GpuError("memory budget of " + mebibytes(budget) + " is too small: one Gaussian needs " +
-                           std::to_string(needed) + " tile entries in this view; raise --memory-budget");
-        }
+        add_stage_times();
+        if (with_stats) unpack_stats(count, indices.data(), gathered);
+        stats.visible += counters[render::kCounterVisible];
+        stats.tile_entries += needed;
+        ++drawn;
     }
     stats.chunks = drawn;
     stats.scene_bytes = scene_device_bytes();
@@ -542,20 +582,29 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
 Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
 Renderer::~Renderer() { impl_->wait_for_recorded_frames(); }
 
-GaussianStats Renderer::Impl::read_stats() const {
+void Renderer::Impl::copy_stats(gpu::CommandStream& stream, uint32_t count) {
     // Layout of the readback: means_depth (vec4 with the radius, 0 when the reference would cull),
-    // weight (uint64), max weight, pixels, centre weight.
-    const size_t n = scene.count;
+    // weight (uint64), max weight, pixels, centre weight; each array `count` long.
+    const uint64_t g = count;
+    auto& f = frame;
+    stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
+    stream.copy(f.stat_weight, f.stats_readback, g * 8, 0, g * 16);
+    stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 24);
+    stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 28);
+    stream.copy(f.stat_centre_weight, f.stats_readback, g * 4, 0, g * 32);
+}
+
+void Renderer::Impl::unpack_stats(uint32_t count, const uint32_t* uploaded, GaussianStats& out) const {
+    const size_t n = count;
     const auto* base = static_cast<const char*>(frame.stats_readback.mapped());
     const auto* means = reinterpret_cast<const float*>(base);
     const auto* weight = reinterpret_cast<const uint64_t*>(base + n * 16);
     const auto* max_weight = reinterpret_cast<const float*>(base + n * 24);
     const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 28);
     const auto* centre_weight = reinterpret_cast<const float*>(base + n * 32);
-    GaussianStats out;
-    out.resize(input_count);
     for (size_t i = 0; i < n; ++i) {
-        const size_t at = kept_indices.empty() ? i : kept_indices[i];
+        const size_t in_scene = uploaded ? uploaded[i] : i;
+        const size_t at = kept_indices.empty() ? in_scene : kept_indices[in_scene];
         out.visible[at] = means[i * 4 + 3] > 0.0f;
         if (out.visible[at]) {
             out.screen_x[at] = means[i * 4 + 0];
@@ -568,7 +617,6 @@ GaussianStats Renderer::Impl::read_stats() const {
         out.pixels[at] = pixels[i];
         out.centre_weight[at] = centre_weight[i];
     }
-    return out;
 }
 
 SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorage& storage) {
@@ -620,7 +668,7 @@ RenderOutput Renderer::render(const Camera& camera, const RenderSettings& settin
     std::memcpy(out.depth.data(), base + pixels * 16, pixels * 4);
     out.contributors.resize(pixels);
     std::memcpy(out.contributors.data(), base + pixels * 20, pixels * 4);
-    if (settings.gather_stats) out.stats = impl_->read_stats();
+    if (settings.gather_stats) out.stats = std::move(impl_->gathered);
     return out;
 }
 
