@@ -60,6 +60,10 @@ expect render-budget-too-small any-failure "is too small for a 80x60 frame" -- "
 # from the saved totals against the photo.
 expect prune 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
   --method blend --ratio 0.5 --background 1,1,1 --save-totals "$work/totals.npy" -o "$work/half.ply"
+expect prune-in-chunks 0 "depth-ordered chunks" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method blend --ratio 0.5 --background 1,1,1 --memory-budget 2 -o "$work/half_chunked.ply"
+cmp -s "$work/half.ply" "$work/half_chunked.ply" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: pruning in chunks kept other Gaussians"; }
 expect prune-refuses-overwrite 2 "half.ply: already exists" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --method blend --ratio 0.5 -o "$work/half.ply"
 expect prune-budget 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
