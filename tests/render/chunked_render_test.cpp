@@ -191,8 +191,10 @@ TEST_F(ChunkedRender, ABudgetTooSmallForOneChunkIsAClearError) {
 }
 
 TEST_F(ChunkedRender, PerGaussianStatisticsMatchTheWholeFrames) {
-    // Each Gaussian blends within one chunk, against the same transmittance as in the whole frame,
-    // and the weights are summed in fixed point: the statistics are the same numbers.
+    // Each Gaussian blends within one chunk, against the same transmittance as in the whole frame:
+    // the statistics are the same numbers. Only the blend weight is summed in float within a
+    // subgroup before its fixed-point atomic (blend_body.glsl), so where a device groups the active
+    // pixels differently in the two frames it may differ by float rounding (lavapipe: exactly equal).
     if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit atomics on " << context().info().name;
     const Camera camera = forward_camera(32, 32, 30.0);
     GaussianCloud cloud = random_scene(35, 2000, 1);
@@ -213,7 +215,8 @@ TEST_F(ChunkedRender, PerGaussianStatisticsMatchTheWholeFrames) {
     EXPECT_EQ(a.screen_y, b.screen_y);
     EXPECT_EQ(a.depth, b.depth);
     EXPECT_EQ(a.radius, b.radius);
-    EXPECT_EQ(a.blend_weight, b.blend_weight);
+    for (size_t i = 0; i < a.size(); ++i)
+        ASSERT_NEAR(a.blend_weight[i], b.blend_weight[i], 1e-5 * a.blend_weight[i] + 1e-9) << "Gaussian " << i;
     EXPECT_EQ(a.max_weight, b.max_weight);
     EXPECT_EQ(a.pixels, b.pixels);
     EXPECT_EQ(a.centre_weight, b.centre_weight);
