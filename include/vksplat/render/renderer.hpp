@@ -55,7 +55,8 @@ struct SceneStorage {
     // allocation, pipelines and command buffers, and the host-visible staging and readback
     // buffers. The host then holds the activated scene (48 bytes + SH per Gaussian) and a staging
     // copy of one chunk. Once a frame has needed chunks the scene stays on the host. Chunked
-    // frames gather per-Gaussian statistics too (the same numbers), cannot be record()ed (it
+    // frames gather per-Gaussian statistics too (the same numbers, but for float rounding of the
+    // blend weight's subgroup sums on some devices), cannot be record()ed (it
     // throws GpuError), and cost an upload of the scene per frame. With the default budget and a scene that fits, no
     // host copy is kept: a frame beyond the device's limit then fails with an out-of-memory
     // GpuError that suggests a budget.
