@@ -68,7 +68,7 @@ int main(int argc, char** argv) {
         std::printf("device: %s\nscene: %s, %zu Gaussians, view %zu %dx%d\n", context.info().name.c_str(),
                     scene.c_str(), cloud.size(), view, camera.width, camera.height);
         std::printf("| budget | chunks | peak device memory | wall ms/frame | GPU ms/frame |\n|---|---|---|---|---|\n");
-        std::printf("| none | %u | %.1f MiB | %.0f | %.0f |\n", whole.last.chunks, whole.last.device_bytes / 1048576.0,
+        std::printf("| none | %u | %.1f MiB | %.3f | %.3f |\n", whole.last.chunks, whole.last.device_bytes / 1048576.0,
                     whole.wall_ms, whole.gpu_ms);
         // Budgets sized like the renderer's planner: a chunk of n / K Gaussians with the tile
         // entries per Gaussian the whole frame needed, plus the renderer's 25% headroom.
@@ -88,7 +88,7 @@ int main(int argc, char** argv) {
                 budget = uint64_t(double(budget) * 1.02);
                 r = measure(context, cloud, camera, settings, budget, reps);
             }
-            std::printf("| %.1f MiB | %u | %.1f MiB | %.0f | %.0f |\n", budget / 1048576.0, r.last.chunks,
+            std::printf("| %.1f MiB | %u | %.1f MiB | %.3f | %.3f |\n", budget / 1048576.0, r.last.chunks,
                         r.last.device_bytes / 1048576.0, r.wall_ms, r.gpu_ms);
         }
     } catch (const std::exception& e) {
