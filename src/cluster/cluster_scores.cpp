@@ -126,9 +126,10 @@ ClusterScores score_clusters(std::span<const float> positions, std::span<const i
     }
     s.spatial = normalise(s.spatial_raw);
     s.depth = normalise(s.depth_raw);
-    std::vector<double> per_member(clusters);
-    for (size_t c = 0; c < clusters; ++c) per_member[c] = s.contribution_raw[c] / double(s.members[c]);
-    s.contribution = normalise(per_member);
+    std::vector<double> largest(clusters, 0.0);
+    for (size_t g = 0; g < contribution.size(); ++g)
+        largest[size_t(cluster_of[g])] = std::max(largest[size_t(cluster_of[g])], double(contribution[g]));
+    s.contribution = normalise(largest);
     s.score.resize(clusters);
     for (size_t c = 0; c < clusters; ++c)
         s.score[c] = -weights.alpha * s.spatial[c] - weights.beta * s.depth[c] + weights.gamma * s.mvr[c] +

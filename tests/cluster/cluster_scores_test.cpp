@@ -27,8 +27,7 @@ ClusterScores with_scores(std::vector<double> g) {
     return s;
 }
 
-// The original G* (no contribution term).
-constexpr ScoreWeights kOriginal{.kappa = 0.0};
+constexpr ScoreWeights kOriginal = kOriginalWeights;  // the G*
 
 TEST(ClusterScores, KnownVariancesAndVisibility) {
     const HandMade m;
@@ -99,19 +98,29 @@ TEST(ClusterScores, ContributionKeepsAPaintingSingletonAndDropsHiddenAndOffScree
     EXPECT_EQ(s.contribution_raw[1], 0.0);
     EXPECT_EQ(s.contribution_raw[2], 0.0);
     EXPECT_NEAR(s.contribution_raw[3], 0.04, 1e-7);
-    // Normalised per member by the 99th percentile of (0.3, 0, 0, 0.01): the singleton is at 1.
+    // The largest member's, normalised by the 99th percentile of (0.3, 0, 0, 0.01): the singleton is at 1.
     EXPECT_EQ(s.contribution[0], 1.0);
     EXPECT_EQ(s.contribution[1], 0.0);
     const double p99 = 0.01 + 0.97 * (0.3 - 0.01);
     EXPECT_NEAR(s.contribution[3], 0.01 / p99, 1e-6);
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(s.score[c], s.contribution[c]) << "the default G* is contribution alone";
+    const ClusterScores both = score_clusters(m.positions, m.cluster_of, m.labels, m.cameras,
+                                              {.alpha = 0.1, .beta = 0.1, .gamma = 1.0, .kappa = 2.0}, m.contribution);
     for (size_t c = 0; c < 4; ++c)
-        EXPECT_NEAR(s.score[c], -0.1 * s.spatial[c] - 0.1 * s.depth[c] + s.mvr[c] + s.contribution[c], 1e-12);
+        EXPECT_NEAR(both.score[c], -0.1 * both.spatial[c] - 0.1 * both.depth[c] + both.mvr[c] + 2 * both.contribution[c],
+                    1e-12);
 
     // Half the Gaussians (5 of 10) go: the off-screen pair and the hidden three, never the singleton.
     const ClusterSelection half = select_clusters(s, m.cluster_of, {.ratio = 0.5});
     EXPECT_EQ(half.keep, (std::vector<uint8_t>{1, 0, 0, 0, 0, 0, 1, 1, 1, 1}));
     EXPECT_EQ(half.contribution_dropped, 0.0);
     EXPECT_FALSE(half.stopped_by_contribution);
+
+    // A cluster is worth its largest member: one painting splat among faint ones keeps it.
+    std::vector<float> one_painter = m.contribution;
+    one_painter[7] = 0.2f;
+    const ClusterScores painted = score_clusters(m.positions, m.cluster_of, m.labels, m.cameras, {}, one_painter);
+    EXPECT_GT(painted.score[3], s.score[3]);
 
     // The original G* ranks the hidden cluster (seen by both views' labels) above the singleton
     // (seen by one) and drops the singleton first.

@@ -73,9 +73,9 @@ protected:
     jobs::Log log;
 };
 
-// The original G* (kappa 0) drops the faint floaters first: they sit in few regions of few views.
-// The default G* also weighs what each Gaussian paints, and a floater, faint but five times wider,
-// paints more than one of the ball's small splats: some floaters stay, and the ball stays nearly whole.
+// The G* drops the faint floaters first: they sit in few regions of few views. The default
+// G* weighs what each cluster paints, and a floater, faint but five times wider, paints more than
+// one of the ball's small splats: floaters stay, and the ball loses a few splats for them.
 TEST_F(ClusterPrune, KeepsTheSubjectAndDropsTheFloatersFirst) {
     Renderer renderer(context());
     const auto kept = [&](const jobs::ClusterOptions& o) {
@@ -87,10 +87,10 @@ TEST_F(ClusterPrune, KeepsTheSubjectAndDropsTheFloatersFirst) {
         return counts;
     };
     jobs::ClusterOptions original = options;
-    original.weights.kappa = 0;
+    original.weights = cluster::kOriginalWeights;
     EXPECT_LE(kept(original).second, kFloaters / 10) << lines;
     EXPECT_NE(lines.find("views: kept"), std::string::npos) << lines;
-    EXPECT_GE(kept(options).first, kSubject - kFloaters / 2) << lines;
+    EXPECT_GE(kept(options).first, kSubject - kFloaters) << lines;
 }
 
 TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
@@ -118,11 +118,12 @@ TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
     // A stage's output is not replaced unasked; with overwrite, new weights give new scores.
     EXPECT_THROW(jobs::score_stage(cloud, cameras, options, io), InputError);
     io.mode = io::WriteMode::overwrite;
-    options.weights.gamma = 0.0;
+    options.weights = cluster::kOriginalWeights;
     const cluster::ClusterScores second = jobs::score_stage(cloud, cameras, options, io);
     EXPECT_EQ(first.size(), second.size());
     EXPECT_NE(first.score, second.score);
-    options.weights.gamma = 1.0;
+    EXPECT_EQ(io::read_npy(dir / "cluster_scores.npy").shape, (std::vector<size_t>{second.size(), 8}));
+    options.weights = {};
     jobs::score_stage(cloud, cameras, options, io);
 
     options.selection.ratio = 0.5;

@@ -78,12 +78,14 @@ void add_build(CLI::App& c, ClusterArgs& a) {
 
 void add_score(CLI::App& c, ClusterArgs& a) {
     auto& w = a.options.weights;
-    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G*");
-    c.add_option("--beta", w.beta, "weight of the depth variance in G*");
-    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G*");
-    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR");
+    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G* (the issue's: 0.1)")->capture_default_str();
+    c.add_option("--beta", w.beta, "weight of the depth variance in G* (the issue's: 0.1)")->capture_default_str();
+    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G* (the issue's: 1)")
+        ->capture_default_str();
+    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR")
+        ->capture_default_str();
     c.add_option("--kappa", w.kappa,
-                 "weight of the contribution (share of the picture each member paints) in G*; 0: the original G*")
+                 "weight of the contribution (largest share of the picture a member paints) in G* (the issue's: 0)")
         ->capture_default_str();
 }
 
@@ -224,9 +226,10 @@ void register_cluster(CLI::App& app, Action& action) {
         "Stages: regions (render and segment views) -> project (view filter, region id per Gaussian) -> build\n"
         "(neighbours + union-find) -> score (G* per cluster) -> prune (write the scene). Each reads the\n"
         "outputs the earlier ones left in --work, so a stage can be re-run with new parameters alone.\n"
-        "Defaults: G* = -alpha*spatial - beta*depth + gamma*MVR + kappa*contribution; drop the lowest clusters\n"
-        "until half the Gaussians are gone or the dropped ones paint 5% of the picture. The original method:\n"
-        "--kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1.\n"
+        "G* = -alpha*spatial - beta*depth + gamma*MVR + kappa*contribution (the largest share of the picture a\n"
+        "member paints). Defaults: contribution alone; drop the lowest clusters until half the Gaussians are gone\n"
+        "or the dropped ones would paint more than --max-contribution-loss of the picture. The issue's method:\n"
+        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,

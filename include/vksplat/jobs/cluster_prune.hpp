@@ -54,8 +54,9 @@ struct ClusterOptions {
     cluster::ScoreWeights weights;
     // Stage 7: which clusters go (cluster_scores.hpp). The defaults drop the lowest-G* clusters
     // until half the Gaussians are gone or the next cluster would take the picture's loss past
-    // max_contribution_loss, whichever comes first. The original method: weights.kappa = 0,
-    // selection.ratio = 0.9, selection.ratio_of = clusters, selection.max_contribution_loss = 1.
+    // max_contribution_loss, whichever comes first. The method: weights =
+    // cluster::kOriginalWeights, selection.ratio = 0.9, selection.ratio_of = clusters,
+    // selection.max_contribution_loss = 1.
     cluster::SelectionRule selection{
         .threshold = std::nullopt, .ratio = 0.5, .ratio_of = cluster::RatioOf::gaussians, .max_contribution_loss = 0.05};
 };
