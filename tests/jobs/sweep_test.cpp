@@ -375,6 +375,9 @@ TEST_F(Sweep, WritesAReportForTheBrowser) {
     const fs::path out = named != nullptr && *named != '\0' ? fs::path(named) : dir / "report";
     auto o = options(out);
     o.methods = {prune::ScoreMethod::opacity, prune::ScoreMethod::footprint, prune::ScoreMethod::blend};
+    o.cluster = true;  // its line among the others
+    o.cluster_options.resolution_scale = 1.0;
+    o.cluster_options.segmentation.k = 150;
     o.fractions = {0, 0.5, 0.9};
     o.compare_scoring_cost = false;
     o.timing_repetitions = 0;  // timed by the measuring renders alone
@@ -382,7 +385,7 @@ TEST_F(Sweep, WritesAReportForTheBrowser) {
     const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, o);
     EXPECT_TRUE(fs::is_regular_file(out / "report.html"));
     for (const auto& row : result.rows) EXPECT_GT(row.measure.ms_per_frame, 0.0);
-    EXPECT_EQ(result.rows.size(), 9u);
+    EXPECT_EQ(result.rows.size(), 12u);
     EXPECT_EQ(result.sheets.size(), 2 * cameras.size());
 }
 

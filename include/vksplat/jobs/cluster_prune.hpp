@@ -58,7 +58,7 @@ struct ClusterOptions {
     // cluster::kOriginalWeights, selection.ratio = 0.9, selection.ratio_of = clusters,
     // selection.max_contribution_loss = 1.
     cluster::SelectionRule selection{
-        .threshold = std::nullopt, .ratio = 0.5, .ratio_of = cluster::RatioOf::gaussians, .max_contribution_loss = 0.05};
+        .threshold = std::nullopt, .ratio = 0.5, .ratio_of = cluster::RatioOf::gaussians, .max_contribution_loss = 0.002};
 };
 
 // Messages for the user: warnings, views dropped and why, statistics. One line per call.
