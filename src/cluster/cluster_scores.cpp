@@ -37,11 +37,26 @@ std::vector<double> percentiles(std::vector<double> values, const std::vector<do
     return out;
 }
 
+RatioOf parse_ratio_of(const std::string& name) {
+    if (name == "gaussians") return RatioOf::gaussians;
+    if (name == "clusters") return RatioOf::clusters;
+    throw InputError("prune ratio unit '" + name + "'", "expected gaussians or clusters");
+}
+
+std::string to_string(RatioOf unit) { return unit == RatioOf::gaussians ? "gaussians" : "clusters"; }
+
 ClusterScores score_clusters(std::span<const float> positions, std::span<const int32_t> cluster_of,
-                             const ViewLabels& labels, const std::vector<Camera>& cameras, const ScoreWeights& weights) {
+                             const ViewLabels& labels, const std::vector<Camera>& cameras, const ScoreWeights& weights,
+                             std::span<const float> contribution) {
     const size_t n = cluster_of.size();
     if (positions.size() != n * 3 || labels.gaussians != n || labels.ids.size() != labels.views * n)
         throw InputError("cluster scores", "positions, cluster ids and view labels disagree in size");
+    if (!contribution.empty() && contribution.size() != n)
+        throw InputError("cluster scores", std::to_string(contribution.size()) + " contributions for " +
+                                               std::to_string(n) + " Gaussians");
+    if (contribution.empty() && weights.kappa != 0)
+        throw InputError("cluster scores", "the contribution term (kappa) needs each Gaussian's contribution; "
+                                           "give kappa 0 for the original G*");
     if (cameras.size() != labels.views)
         throw InputError("cluster scores", std::to_string(cameras.size()) + " cameras for " +
                                                std::to_string(labels.views) + " views of labels");
@@ -63,6 +78,12 @@ ClusterScores score_clusters(std::span<const float> positions, std::span<const i
         }
     }
     ClusterScores s;
+    s.members.assign(clusters, 0);
+    s.contribution_raw.assign(clusters, 0);
+    for (size_t g = 0; g < n; ++g) {
+        s.members[size_t(cluster_of[g])] += 1;
+        if (!contribution.empty()) s.contribution_raw[size_t(cluster_of[g])] += double(contribution[g]);
+    }
     s.spatial_raw.assign(clusters, 0);
     for (size_t c = 0; c < clusters; ++c) {
         double centre_squared = 0;
@@ -105,17 +126,28 @@ ClusterScores score_clusters(std::span<const float> positions, std::span<const i
     }
     s.spatial = normalise(s.spatial_raw);
     s.depth = normalise(s.depth_raw);
+    std::vector<double> largest(clusters, 0.0);
+    for (size_t g = 0; g < contribution.size(); ++g)
+        largest[size_t(cluster_of[g])] = std::max(largest[size_t(cluster_of[g])], double(contribution[g]));
+    s.contribution = normalise(largest);
     s.score.resize(clusters);
     for (size_t c = 0; c < clusters; ++c)
-        s.score[c] = -weights.alpha * s.spatial[c] - weights.beta * s.depth[c] + weights.gamma * s.mvr[c];
+        s.score[c] = -weights.alpha * s.spatial[c] - weights.beta * s.depth[c] + weights.gamma * s.mvr[c] +
+                     weights.kappa * s.contribution[c];
     return s;
 }
 
 ClusterSelection select_clusters(const ClusterScores& scores, std::span<const int32_t> cluster_of,
-                                 std::optional<double> threshold, double ratio) {
+                                 const SelectionRule& rule) {
     const size_t clusters = scores.size();
-    if (!(ratio >= 0.0 && ratio <= 1.0)) throw InputError("prune ratio", "must lie in [0, 1]");
-    std::vector<uint8_t> keep_cluster(clusters, 1);
+    if (!(rule.ratio >= 0.0 && rule.ratio <= 1.0)) throw InputError("prune ratio", "must lie in [0, 1]");
+    if (!(rule.max_contribution_loss >= 0.0 && rule.max_contribution_loss <= 1.0))
+        throw InputError("max contribution loss", "must lie in [0, 1]");
+    const bool capped = rule.max_contribution_loss < 1.0;
+    if (capped && scores.contribution_raw.size() != clusters)
+        throw InputError("max contribution loss", "needs the clusters' contributions (score them again)");
+    std::vector<size_t> members(clusters, 0);
+    for (int32_t c : cluster_of) members[size_t(c)] += 1;
     ClusterSelection out;
     // Clusters from worst to best; ties: the higher id goes first, so the order is deterministic.
     std::vector<uint32_t> order(clusters);
@@ -123,19 +155,43 @@ ClusterSelection select_clusters(const ClusterScores& scores, std::span<const in
     std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
         return scores.score[a] != scores.score[b] ? scores.score[a] < scores.score[b] : a > b;
     });
-    if (threshold) {
-        for (size_t c = 0; c < clusters; ++c) keep_cluster[c] = !(scores.score[c] < *threshold);
-    } else {
-        const size_t drop = size_t(std::floor(ratio * double(clusters)));
-        for (size_t k = 0; k < drop; ++k) keep_cluster[order[k]] = 0;
-        if (ratio > 0 && drop == 0 && clusters > 0)
+    // The clusters the rule would drop, worst first.
+    std::vector<uint32_t> candidates;
+    if (rule.threshold) {
+        for (uint32_t c : order)
+            if (scores.score[c] < *rule.threshold) candidates.push_back(c);
+    } else if (rule.ratio_of == RatioOf::clusters) {
+        const size_t drop = size_t(std::floor(rule.ratio * double(clusters)));
+        candidates.assign(order.begin(), order.begin() + std::ptrdiff_t(drop));
+        if (rule.ratio > 0 && drop == 0 && clusters > 0)
             out.warnings.push_back("only " + std::to_string(clusters) + " cluster(s): a ratio of " +
-                                   std::to_string(ratio) + " drops none of them");
+                                   std::to_string(rule.ratio) + " drops none of them");
+    } else {
+        const size_t target = size_t(std::llround(rule.ratio * double(cluster_of.size())));
+        size_t dropped = 0;
+        for (size_t k = 0; k < order.size() && dropped < target; ++k) {
+            candidates.push_back(order[k]);
+            dropped += members[order[k]];
+        }
+    }
+    const double total = std::accumulate(scores.contribution_raw.begin(), scores.contribution_raw.end(), 0.0);
+    std::vector<uint8_t> keep_cluster(clusters, 1);
+    double lost = 0;
+    for (uint32_t c : candidates) {
+        const double share = total > 0 && c < scores.contribution_raw.size() ? scores.contribution_raw[c] / total : 0.0;
+        if (capped && lost + share > rule.max_contribution_loss) {
+            out.stopped_by_contribution = true;
+            break;
+        }
+        keep_cluster[c] = 0;
+        lost += share;
     }
     if (clusters > 0 && std::none_of(keep_cluster.begin(), keep_cluster.end(), [](uint8_t k) { return k != 0; })) {
         keep_cluster[order.back()] = 1;
+        if (total > 0) lost -= scores.contribution_raw[order.back()] / total;
         out.warnings.push_back("the selection would drop every cluster; kept the best one");
     }
+    out.contribution_dropped = lost;
     out.clusters_dropped = size_t(std::count(keep_cluster.begin(), keep_cluster.end(), 0));
     out.keep.resize(cluster_of.size());
     for (size_t g = 0; g < cluster_of.size(); ++g) {

@@ -113,14 +113,16 @@ std::vector<size_t> filter_views(const std::vector<RegionView>& regions, const C
     return kept;
 }
 
-cluster::ViewLabels project_views(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
-                                  const std::vector<Camera>& cameras, const std::vector<const RegionView*>& views,
-                                  const ClusterOptions& options, const prune::Progress& progress) {
+ProjectedViews project_views(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+                             const std::vector<Camera>& cameras, const std::vector<const RegionView*>& views,
+                             const ClusterOptions& options, const prune::Progress& progress) {
     renderer.set_scene(cloud);
     cluster::Projector projector(context);
     RenderSettings with_stats = options.settings;
     with_stats.gather_stats = true;
-    cluster::ViewLabels labels;
+    ProjectedViews out;
+    std::vector<double> contribution(cloud.size(), 0.0);
+    cluster::ViewLabels& labels = out.labels;
     labels.views = views.size();
     labels.gaussians = cloud.size();
     labels.ids.reserve(labels.views * labels.gaussians);
@@ -132,9 +134,14 @@ cluster::ViewLabels project_views(Renderer& renderer, const gpu::Context& contex
         const GaussianStats stats = renderer.render(camera, with_stats).stats;
         const std::vector<int32_t> ids = projector.project(stats, view.map, options.projection);
         labels.ids.insert(labels.ids.end(), ids.begin(), ids.end());
+        const double pixels = double(camera.width) * double(camera.height);
+        for (size_t g = 0; g < contribution.size(); ++g) contribution[g] += stats.blend_weight[g] / pixels;
         if (progress) progress(done + 1, views.size());
     }
-    return labels;
+    out.contribution.resize(contribution.size());
+    const double view_count = double(std::max<size_t>(1, views.size()));
+    for (size_t g = 0; g < contribution.size(); ++g) out.contribution[g] = float(contribution[g] / view_count);
+    return out;
 }
 
 cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster::ViewLabels& labels,
@@ -174,14 +181,15 @@ cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster:
 }
 
 void log_score_table(const cluster::ClusterScores& scores, const Log& log) {
-    say(log, "percentile   spatial    depth      MVR        G*");
+    say(log, "percentile   spatial    depth      MVR        contrib.   G*");
     const auto spatial = cluster::percentiles(scores.spatial, cluster::kReportPercents);
     const auto depth = cluster::percentiles(scores.depth, cluster::kReportPercents);
     const auto mvr = cluster::percentiles(scores.mvr, cluster::kReportPercents);
+    const auto contribution = cluster::percentiles(scores.contribution, cluster::kReportPercents);
     const auto total = cluster::percentiles(scores.score, cluster::kReportPercents);
     for (size_t k = 0; k < cluster::kReportPercents.size(); ++k)
-        say(log, format("%9.0f%%   %-9.4f  %-9.4f  %-9.4f  %-9.4f", cluster::kReportPercents[k], spatial[k], depth[k],
-                        mvr[k], total[k]));
+        say(log, format("%9.0f%%   %-9.4f  %-9.4f  %-9.4f  %-9.4f  %-9.4f", cluster::kReportPercents[k], spatial[k],
+                        depth[k], mvr[k], contribution[k], total[k]));
 }
 
 std::vector<float> cluster_gaussian_scores(Renderer& renderer, const gpu::Context& context, const GaussianCloud& input,
@@ -192,12 +200,12 @@ std::vector<float> cluster_gaussian_scores(Renderer& renderer, const gpu::Contex
     const std::vector<RegionView> regions = make_region_maps(renderer, cloud, cameras, options);
     std::vector<const RegionView*> used;
     for (size_t k : filter_views(regions, options, log)) used.push_back(&regions[k]);
-    const cluster::ViewLabels labels = project_views(renderer, context, cloud, cameras, used, options);
-    const cluster::Clustering clustering = cluster_gaussians(cloud, labels, options, log);
+    const ProjectedViews projected = project_views(renderer, context, cloud, cameras, used, options);
+    const cluster::Clustering clustering = cluster_gaussians(cloud, projected.labels, options, log);
     std::vector<Camera> used_cameras;
     for (const RegionView* view : used) used_cameras.push_back(cameras[view->view]);
-    const cluster::ClusterScores scores =
-        cluster::score_clusters(cloud.positions, clustering.cluster_of, labels, used_cameras, options.weights);
+    const cluster::ClusterScores scores = cluster::score_clusters(cloud.positions, clustering.cluster_of, projected.labels,
+                                                                  used_cameras, options.weights, projected.contribution);
     log_score_table(scores, log);
     std::vector<float> ranks = cluster::gaussian_scores(scores, clustering.cluster_of);
     if (report.kept_indices.empty()) return ranks;

@@ -25,9 +25,13 @@ std::string view_stem(size_t view) {
     return name;
 }
 
+// Columns of cluster_scores.npy (see cluster_work_dir.hpp).
+constexpr size_t kScoreColumns = 8;
+
 fs::path regions_dir(const ClusterStageIo& io) { return io.work / "regions"; }
 fs::path projection_file(const ClusterStageIo& io) { return io.work / "projection.npy"; }
 fs::path projection_views_file(const ClusterStageIo& io) { return io.work / "projection_views.npy"; }
+fs::path contribution_file(const ClusterStageIo& io) { return io.work / "contribution.npy"; }
 fs::path clusters_file(const ClusterStageIo& io) { return io.work / "clusters.npy"; }
 fs::path scores_file(const ClusterStageIo& io) { return io.work / "cluster_scores.npy"; }
 
@@ -111,6 +115,23 @@ std::vector<int32_t> load_clusters(size_t gaussians, const ClusterStageIo& io) {
     return ids;
 }
 
+// Work folders from before the contribution term have none: only the original G* (kappa 0) can
+// be scored from them.
+std::vector<float> load_contribution(size_t gaussians, const cluster::ScoreWeights& weights, const ClusterStageIo& io) {
+    if (!fs::exists(contribution_file(io))) {
+        if (weights.kappa == 0) return {};
+        throw InputError(contribution_file(io).string(),
+                         "not found: run `vksplat cluster project` again (with --force) to make it, or give "
+                         "--kappa 0 for the original G*");
+    }
+    auto values = io::read_npy(contribution_file(io)).values<float>();
+    if (values.size() != gaussians)
+        throw InputError(contribution_file(io).string(), "holds " + std::to_string(values.size()) +
+                                                             " values, the scene has " + std::to_string(gaussians) +
+                                                             " Gaussians");
+    return values;
+}
+
 }  // namespace
 
 void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
@@ -137,6 +158,7 @@ void project_stage(Renderer& renderer, const gpu::Context& context, const Gaussi
                    const std::vector<Camera>& cameras, const ClusterOptions& options, const ClusterStageIo& io) {
     refuse_existing(projection_file(io), io);
     refuse_existing(projection_views_file(io), io);
+    refuse_existing(contribution_file(io), io);
     const std::vector<RegionView> regions = load_region_views(options, io);
     std::vector<const RegionView*> used;
     std::vector<int32_t> view_ids;
@@ -144,7 +166,8 @@ void project_stage(Renderer& renderer, const gpu::Context& context, const Gaussi
         used.push_back(&regions[k]);
         view_ids.push_back(int32_t(regions[k].view));
     }
-    const cluster::ViewLabels labels = project_views(renderer, context, cloud, cameras, used, options, io.progress);
+    const ProjectedViews projected = project_views(renderer, context, cloud, cameras, used, options, io.progress);
+    const cluster::ViewLabels& labels = projected.labels;
     const int32_t largest = labels.ids.empty() ? 0 : *std::max_element(labels.ids.begin(), labels.ids.end());
     const std::vector<size_t> shape{labels.views, labels.gaussians};
     if (largest <= INT16_MAX) {
@@ -154,6 +177,7 @@ void project_stage(Renderer& renderer, const gpu::Context& context, const Gaussi
         io::write_npy(projection_file(io), labels.ids.data(), shape, io.mode);
     }
     io::write_npy(projection_views_file(io), view_ids.data(), {view_ids.size()}, io.mode);
+    io::write_npy(contribution_file(io), projected.contribution.data(), {projected.contribution.size()}, io.mode);
     const size_t seen = size_t(std::count_if(labels.ids.begin(), labels.ids.end(), [](int32_t id) { return id >= 0; }));
     char line[160];
     std::snprintf(line, sizeof(line), "projection (%s rule): %zu views x %zu Gaussians, %.1f%% of the entries in a region",
@@ -183,15 +207,18 @@ cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector
                                                                      std::to_string(cameras.size()) + " cameras");
         used.push_back(cameras[view]);
     }
-    cluster::ClusterScores scores = cluster::score_clusters(cloud.positions, cluster_of, labels, used, options.weights);
+    const std::vector<float> contribution = load_contribution(cloud.size(), options.weights, io);
+    cluster::ClusterScores scores =
+        cluster::score_clusters(cloud.positions, cluster_of, labels, used, options.weights, contribution);
     log_score_table(scores, io.log);
-    std::vector<float> table(scores.size() * 6);
+    std::vector<float> table(scores.size() * kScoreColumns);
     for (size_t c = 0; c < scores.size(); ++c) {
-        const double row[6] = {scores.spatial_raw[c], scores.depth_raw[c], scores.spatial[c],
-                               scores.depth[c],       scores.mvr[c],       scores.score[c]};
-        for (int k = 0; k < 6; ++k) table[c * 6 + k] = float(row[k]);
+        const double row[kScoreColumns] = {scores.spatial_raw[c], scores.depth_raw[c],      scores.spatial[c],
+                                           scores.depth[c],       scores.mvr[c],            scores.score[c],
+                                           scores.contribution_raw[c], scores.contribution[c]};
+        for (size_t k = 0; k < kScoreColumns; ++k) table[c * kScoreColumns + k] = float(row[k]);
     }
-    io::write_npy(scores_file(io), table.data(), {scores.size(), 6}, io.mode);
+    io::write_npy(scores_file(io), table.data(), {scores.size(), kScoreColumns}, io.mode);
     return scores;
 }
 
@@ -202,18 +229,26 @@ ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions&
     require(scores_file(io), "score");
     const io::NpyArray table = io::read_npy(scores_file(io));
     const auto values = table.values<float>();
-    if (table.shape.size() != 2 || table.shape[1] != 6)
-        throw InputError(scores_file(io).string(), "is not a [clusters, 6] table");
+    // 6 columns: a table from before the contribution term (G* only, no contribution limit).
+    if (table.shape.size() != 2 || (table.shape[1] != kScoreColumns && table.shape[1] != 6))
+        throw InputError(scores_file(io).string(), "is not a [clusters, " + std::to_string(kScoreColumns) + "] table");
+    const size_t columns = table.shape[1];
     cluster::ClusterScores scores;
     scores.score.resize(table.shape[0]);
-    for (size_t c = 0; c < scores.score.size(); ++c) scores.score[c] = values[c * 6 + 5];
+    for (size_t c = 0; c < scores.score.size(); ++c) scores.score[c] = values[c * columns + 5];
+    if (columns == kScoreColumns) {
+        scores.contribution_raw.resize(table.shape[0]);
+        for (size_t c = 0; c < scores.size(); ++c) scores.contribution_raw[c] = values[c * columns + 6];
+    }
     for (int32_t id : cluster_of)
         if (id < 0 || size_t(id) >= scores.size())
             throw InputError(clusters_file(io).string(), "names cluster " + std::to_string(id) + ", but " +
                                                              scores_file(io).string() + " scores " +
                                                              std::to_string(scores.size()) + " (re-run score)");
-    const cluster::ClusterSelection selection =
-        cluster::select_clusters(scores, cluster_of, options.score_threshold, options.prune_ratio);
+    if (options.selection.max_contribution_loss < 1 && scores.contribution_raw.empty())
+        throw InputError(scores_file(io).string(), "has no contribution column: run `vksplat cluster score` again, "
+                                                   "or give --max-contribution-loss 1");
+    const cluster::ClusterSelection selection = cluster::select_clusters(scores, cluster_of, options.selection);
     for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
     const GaussianCloud pruned = cloud.subset(selection.keep);
     io::write_ply(pruned, out, io.mode);
@@ -224,6 +259,8 @@ ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions&
     result.bytes_after = pruned.ply_bytes();
     result.clusters = scores.size();
     result.clusters_dropped = selection.clusters_dropped;
+    result.contribution_dropped = selection.contribution_dropped;
+    result.stopped_by_contribution = selection.stopped_by_contribution;
     return result;
 }
 

@@ -1,5 +1,6 @@
 // The sweep job: sanitise, gather the view totals once, then per method one ranking cut at every
-// fraction and measured; the unpruned scene at each SH degree; sheets of the best method; files.
+// fraction and measured (cluster pruning's ranking from its own stages); the unpruned scene at each
+// SH degree; sheets of the best method; files.
 #include "vksplat/jobs/sweep.hpp"
 
 #include <algorithm>
@@ -62,7 +63,7 @@ void check_options(const SweepOptions& options, size_t camera_count) {
 }
 
 std::vector<prune::ScoreMethod> methods_of(const SweepOptions& options) {
-    if (!options.methods.empty()) return options.methods;
+    if (!options.methods.empty() || options.cluster) return options.methods;
     std::vector<prune::ScoreMethod> all;
     for (const std::string& name : prune::score_method_names()) all.push_back(prune::parse_score_method(name));
     return all;
@@ -125,11 +126,10 @@ size_t kept_count(size_t n, double fraction) { return n - size_t(std::llround(fr
 
 // photo | unpruned | pruned | error, one sheet per test view, for `method` at each fraction.
 std::vector<fs::path> write_sheets(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking,
-                                   prune::ScoreMethod method, const std::vector<double>& fractions,
+                                   const std::string& name, const std::vector<double>& fractions,
                                    const Targets& targets, const SweepOptions& options,
                                    const std::vector<std::string>& stems, const SweepProgress& progress) {
     std::vector<fs::path> sheets;
-    const std::string name(prune::to_string(method));
     const size_t total = fractions.size() * targets.cameras.size();
     for (double fraction : fractions) {
         const GaussianCloud pruned = cloud.subset(ranking.keep_best(kept_count(cloud.size(), fraction)));
@@ -183,19 +183,19 @@ std::vector<size_t> spread_views(const std::vector<size_t>& views, size_t count)
     return picked;
 }
 
-prune::ScoreMethod best_method(const std::vector<SweepRow>& rows) {
+std::string best_method(const std::vector<SweepRow>& rows) {
     if (rows.empty()) throw std::invalid_argument("jobs::best_method: no rows");
-    std::vector<prune::ScoreMethod> order;
-    std::map<prune::ScoreMethod, std::pair<double, size_t>> sums;
+    std::vector<std::string> order;
+    std::map<std::string, std::pair<double, size_t>> sums;
     for (const SweepRow& row : rows) {
         if (std::find(order.begin(), order.end(), row.method) == order.end()) order.push_back(row.method);
         if (row.fraction <= 0) continue;
         sums[row.method].first += row.measure.psnr;
         ++sums[row.method].second;
     }
-    prune::ScoreMethod best = order.front();
+    std::string best = order.front();
     double best_mean = -std::numeric_limits<double>::infinity();
-    for (prune::ScoreMethod method : order) {
+    for (const std::string& method : order) {
         const auto it = sums.find(method);
         if (it == sums.end()) continue;
         const double mean = it->second.first / double(it->second.second);
@@ -251,9 +251,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
 
     // Every fraction the lossless pass alone covers keeps the same model, whatever the method.
     std::optional<ModelMeasure> lossless_only;
-    const size_t total_rows = methods.size() * fractions.size();
-    for (prune::ScoreMethod method : methods) {
-        const prune::Ranking ranking(prune::score(cloud, totals, method, options.seed), candidates);
+    const size_t total_rows = (methods.size() + (options.cluster ? 1 : 0)) * fractions.size();
+    const auto sweep_ranking = [&](const std::string& method, const prune::Ranking& ranking) {
         for (double fraction : fractions) {
             if (progress.step) progress.step("sweep", result.rows.size(), total_rows);
             const size_t keep = kept_count(cloud.size(), fraction);
@@ -273,14 +272,33 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             result.rows.push_back(row);
             if (progress.row) progress.row(result.rows.back());
         }
+    };
+    for (prune::ScoreMethod method : methods)
+        sweep_ranking(std::string(prune::to_string(method)),
+                      prune::Ranking(prune::score(cloud, totals, method, options.seed), candidates));
+    std::vector<float> cluster_scores;
+    if (options.cluster) {
+        if (progress.step) progress.step("cluster pruning's stages", 0, 1);
+        ClusterOptions cluster = options.cluster_options;
+        if (cluster.views.empty()) cluster.views = result.train_views;
+        cluster.settings.background = options.settings.background;
+        const auto cluster_start = std::chrono::steady_clock::now();
+        cluster_scores = cluster_gaussian_scores(renderer, renderer.context(), cloud, cameras, cluster);
+        result.cluster_seconds = seconds_since(cluster_start);
+        if (progress.step) progress.step("cluster pruning's stages", 1, 1);
+        sweep_ranking(kClusterMethod, prune::Ranking(cluster_scores, candidates));
     }
     if (progress.step) progress.step("sweep", total_rows, total_rows);
 
     result.best_method = best_method(result.rows);
     result.sheet_fractions = swept_sheet_fractions(options, fractions);
-    result.sheets = write_sheets(renderer, cloud,
-                                 prune::Ranking(prune::score(cloud, totals, result.best_method, options.seed), candidates),
-                                 result.best_method, result.sheet_fractions, targets, options, stems, progress);
+    const prune::Ranking best_ranking =
+        result.best_method == kClusterMethod
+            ? prune::Ranking(cluster_scores, candidates)
+            : prune::Ranking(prune::score(cloud, totals, prune::parse_score_method(result.best_method), options.seed),
+                             candidates);
+    result.sheets = write_sheets(renderer, cloud, best_ranking, result.best_method, result.sheet_fractions, targets,
+                                 options, stems, progress);
 
     result.csv = fs::absolute(options.out_dir / "sweep.csv");
     result.sh_csv = fs::absolute(options.out_dir / "sh_degrees.csv");

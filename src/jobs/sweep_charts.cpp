@@ -19,7 +19,7 @@ template <typename X, typename Y>
 std::vector<eval::Series> per_method(const std::vector<SweepRow>& rows, X x, Y y) {
     std::vector<eval::Series> series;
     for (const SweepRow& row : rows) {
-        const std::string name(prune::to_string(row.method));
+        const std::string name(row.method);
         if (series.empty() || series.back().name != name) series.push_back({name, {}, {}});
         series.back().x.push_back(x(row));
         series.back().y.push_back(y(row));

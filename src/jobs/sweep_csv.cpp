@@ -31,7 +31,7 @@ void write_sweep_csv(const std::filesystem::path& path, const SweepResult& resul
                "ssim_vs_unpruned,ms_per_frame\n";
         for (const SweepRow& row : result.rows) {
             const ModelMeasure& m = row.measure;
-            out << prune::to_string(row.method) << ',' << fraction_label(row.fraction) << ',' << number(row.dropped, 6)
+            out << row.method << ',' << fraction_label(row.fraction) << ',' << number(row.dropped, 6)
                 << ',' << m.gaussians << ',' << m.bytes << ',' << number(double(m.bytes) / 1e6, 3) << ','
                 << number(m.psnr, 4) << ',' << number(row.delta_psnr, 4) << ',' << number(m.ssim, 5) << ','
                 << number(m.psnr_vs_unpruned, 4) << ',' << number(m.ssim_vs_unpruned, 5) << ','

@@ -47,6 +47,14 @@ void add_summary(eval::HtmlReport& report, const SweepResult& result, const Swee
                          std::to_string(result.lossless_dropped) +
                          ", so fraction 0 is that pass alone. Fractions count all Gaussians, the lossless pass's "
                          "included.");
+    if (options.cluster)
+        report.add_paragraph(
+            "The cluster method is cluster pruning (vksplat cluster) at its settings: region maps of up to " +
+            std::to_string(options.cluster_options.max_views) +
+            " training views, clusters of neighbouring Gaussians whose regions agree, each Gaussian ranked by its "
+            "cluster's G*, so that a kept count takes clusters whole from the best down (the last one partly), "
+            "after the same lossless pass. Its stages took " +
+            format("%.1f", result.cluster_seconds) + " s.");
 }
 
 void add_table(eval::HtmlReport& report, const SweepResult& result) {
@@ -56,7 +64,7 @@ void add_table(eval::HtmlReport& report, const SweepResult& result) {
                     "0", format("%.4f", u.ssim), "inf", "1", format("%.2f", u.ms_per_frame)});
     for (const SweepRow& row : result.rows) {
         const ModelMeasure& m = row.measure;
-        rows.push_back({std::string(prune::to_string(row.method)), fraction_label(row.fraction),
+        rows.push_back({row.method, fraction_label(row.fraction),
                         format("%.4f", row.dropped), std::to_string(m.gaussians), megabytes(m.bytes),
                         format("%.3f", m.psnr), format("%+.3f", row.delta_psnr), format("%.4f", m.ssim),
                         format("%.2f", m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
@@ -89,7 +97,7 @@ void add_sh_degrees(eval::HtmlReport& report, const SweepResult& result, const S
 
 void add_sheets(eval::HtmlReport& report, const SweepResult& result, const SweepOptions& options) {
     report.add_heading("Comparison sheets");
-    const std::string best(prune::to_string(result.best_method));
+    const std::string& best = result.best_method;
     if (result.sheets.empty()) {
         report.add_paragraph("No sheets: none of the sheet fractions was swept.");
         return;

@@ -683,4 +683,6 @@ void Renderer::record(VkCommandBuffer command_buffer, const Camera& camera, cons
 
 const FrameStats& Renderer::last_frame() const { return impl_->stats; }
 
+const gpu::Context& Renderer::context() const { return impl_->context; }
+
 }  // namespace vksplat

@@ -119,6 +119,14 @@ expect cluster-rescore 0 "percentile" -- "$vksplat" cluster score "$work/demo/de
   --work "$work/cw" --gamma 0.5 --force
 expect cluster-reprune 0 "wrote $work/half_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.5 -o "$work/half_clusters.ply"
+expect cluster-original-method 0 "percentile" -- "$vksplat" cluster score "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --force
+expect cluster-original-prune 0 "wrote $work/original_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1 \
+  -o "$work/original_clusters.ply"
+expect cluster-help-says-the-original 0 "--kappa 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
+expect cluster-bad-ratio-of any-failure "--ratio-of" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --ratio-of splats -o "$work/bad.ply"
 expect cluster-needs-earlier-stage 2 "run \`vksplat cluster project\` first" -- "$vksplat" cluster build \
   "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/empty_work"
 expect cluster-bad-delta 2 "--delta-dist x: expected a distance or auto" -- "$vksplat" cluster build \

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -72,15 +73,24 @@ protected:
     jobs::Log log;
 };
 
+// The G* drops the faint floaters first: they sit in few regions of few views. The default
+// G* weighs what each cluster paints, and a floater, faint but five times wider, paints more than
+// one of the ball's small splats: floaters stay, and the ball loses a few splats for them.
 TEST_F(ClusterPrune, KeepsTheSubjectAndDropsTheFloatersFirst) {
     Renderer renderer(context());
-    const auto keep = jobs::cluster_keep_mask(renderer, context(), cloud, cameras, kSubject, options, log);
-    ASSERT_EQ(keep.size(), cloud.size());
-    size_t subject_kept = 0, floaters_kept = 0;
-    for (size_t i = 0; i < keep.size(); ++i) (i < kSubject ? subject_kept : floaters_kept) += keep[i];
-    EXPECT_EQ(subject_kept + floaters_kept, kSubject);
-    EXPECT_LE(floaters_kept, kFloaters / 10) << lines;
+    const auto kept = [&](const jobs::ClusterOptions& o) {
+        const auto keep = jobs::cluster_keep_mask(renderer, context(), cloud, cameras, kSubject, o, log);
+        EXPECT_EQ(keep.size(), cloud.size());
+        std::pair<size_t, size_t> counts{0, 0};  // subject, floaters
+        for (size_t i = 0; i < keep.size(); ++i) (i < kSubject ? counts.first : counts.second) += keep[i];
+        EXPECT_EQ(counts.first + counts.second, kSubject);
+        return counts;
+    };
+    jobs::ClusterOptions original = options;
+    original.weights = cluster::kOriginalWeights;
+    EXPECT_LE(kept(original).second, kFloaters / 10) << lines;
     EXPECT_NE(lines.find("views: kept"), std::string::npos) << lines;
+    EXPECT_GE(kept(options).first, kSubject - kFloaters) << lines;
 }
 
 TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
@@ -108,14 +118,15 @@ TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
     // A stage's output is not replaced unasked; with overwrite, new weights give new scores.
     EXPECT_THROW(jobs::score_stage(cloud, cameras, options, io), InputError);
     io.mode = io::WriteMode::overwrite;
-    options.weights.gamma = 0.0;
+    options.weights = cluster::kOriginalWeights;
     const cluster::ClusterScores second = jobs::score_stage(cloud, cameras, options, io);
     EXPECT_EQ(first.size(), second.size());
     EXPECT_NE(first.score, second.score);
-    options.weights.gamma = 1.0;
+    EXPECT_EQ(io::read_npy(dir / "cluster_scores.npy").shape, (std::vector<size_t>{second.size(), 8}));
+    options.weights = {};
     jobs::score_stage(cloud, cameras, options, io);
 
-    options.prune_ratio = 0.5;
+    options.selection.ratio = 0.5;
     const auto result = jobs::prune_stage(cloud, options, dir / "out.ply", io);
     EXPECT_EQ(result.count_before, cloud.size());
     EXPECT_GT(result.count_after, 0u);
@@ -153,6 +164,42 @@ TEST_F(ClusterPrune, NoiseRegionMapsWarnAndStillGiveAScene) {
     jobs::score_stage(cloud, cameras, options, io);
     const auto result = jobs::prune_stage(cloud, options, dir / "out.ply", io);
     EXPECT_GT(result.count_after, 0u);
+}
+
+// The contribution the projection stage measures, on splats whose answer is known: a large opaque
+// splat in front, a small one right behind it (hidden), one beside the picture (off-screen) and a
+// faint one in the open. The hidden and off-screen ones paint nothing, so the default selection
+// drops them first, and the front one stays.
+TEST_F(ClusterPrune, ContributionIsWhatEachSplatPaints) {
+    GaussianCloud scene;
+    scene.sh_degree = 0;
+    add_splat(scene, {.position = {0, 0, 4}, .scale = {0.5, 0.5, 0.05}, .opacity = 0.99, .color = {1, 0, 0}});
+    add_splat(scene, {.position = {0, 0, 5}, .scale = {0.05, 0.05, 0.05}, .opacity = 0.9, .color = {0, 1, 0}});
+    add_splat(scene, {.position = {40, 0, 4}, .scale = {0.2, 0.2, 0.2}, .opacity = 0.9, .color = {0, 0, 1}});
+    add_splat(scene, {.position = {1.2, 0.8, 4}, .scale = {0.1, 0.1, 0.1}, .opacity = 0.3, .color = {1, 1, 1}});
+    const std::vector<Camera> views{forward_camera(96, 64, 60), forward_camera(96, 64, 60)};
+    jobs::RegionView whole;
+    whole.map = {96, 64, std::vector<int32_t>(96 * 64, 0)};
+    Renderer renderer(context());
+    const jobs::ProjectedViews projected =
+        jobs::project_views(renderer, context(), scene, views, {&whole, &whole}, options);
+    ASSERT_EQ(projected.contribution.size(), 4u);
+    const auto& c = projected.contribution;
+    // Unoccluded, a splat paints opacity * 2 pi sigma^2 pixels (sigma in pixels: scale * focal / z):
+    // 0.99 * 2 pi * 7.5^2 of the 96 x 64 for the front one, 0.3 * 2 pi * 1.5^2 for the faint one
+    // (coarser: it is only a few pixels wide).
+    const double pixels = 96.0 * 64.0;
+    EXPECT_NEAR(c[0], 0.99 * 2 * M_PI * 7.5 * 7.5 / pixels, 0.005);
+    EXPECT_LT(c[1], 1e-3f * c[0]) << "hidden behind the front splat";
+    EXPECT_EQ(c[2], 0.0f) << "off-screen";
+    EXPECT_NEAR(c[3], 0.3 * 2 * M_PI * 1.5 * 1.5 / pixels, 0.3 * 0.3 * 2 * M_PI * 1.5 * 1.5 / pixels);
+
+    // Each splat its own cluster: half of them go, the two that paint nothing.
+    const cluster::ClusterScores scores = cluster::score_clusters(
+        scene.positions, std::vector<int32_t>{0, 1, 2, 3}, projected.labels, views, options.weights, c);
+    const cluster::ClusterSelection selection =
+        cluster::select_clusters(scores, std::vector<int32_t>{0, 1, 2, 3}, options.selection);
+    EXPECT_EQ(selection.keep, (std::vector<uint8_t>{1, 0, 0, 1}));
 }
 
 TEST_F(ClusterPrune, AViewWithoutTheSubjectIsDropped) {

@@ -112,7 +112,7 @@ TEST(SweepHelpers, FractionsViewsAndBestMethod) {
     using prune::ScoreMethod;
     auto row = [](ScoreMethod method, double fraction, double psnr) {
         jobs::SweepRow r;
-        r.method = method;
+        r.method = prune::to_string(method);
         r.fraction = fraction;
         r.measure.psnr = psnr;
         return r;
@@ -121,11 +121,10 @@ TEST(SweepHelpers, FractionsViewsAndBestMethod) {
     EXPECT_EQ(jobs::best_method({row(ScoreMethod::opacity, 0, 30), row(ScoreMethod::opacity, 0.5, 28),
                                  row(ScoreMethod::opacity, 0.9, 20), row(ScoreMethod::blend, 0, 40),
                                  row(ScoreMethod::blend, 0.5, 29), row(ScoreMethod::blend, 0.9, 18)}),
-              ScoreMethod::opacity);
-    EXPECT_EQ(jobs::best_method({row(ScoreMethod::random, 0, 30), row(ScoreMethod::blend, 0, 31)}),
-              ScoreMethod::random);
+              "opacity");
+    EXPECT_EQ(jobs::best_method({row(ScoreMethod::random, 0, 30), row(ScoreMethod::blend, 0, 31)}), "random");
     EXPECT_EQ(jobs::best_method({row(ScoreMethod::footprint, 0.5, 30), row(ScoreMethod::blend, 0.5, 30)}),
-              ScoreMethod::footprint)
+              "footprint")
         << "ties go to the first";
 }
 
@@ -206,17 +205,17 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     // Dropping 98% hurts every method; a score that reads the renders beats chance.
     const auto at = [&](prune::ScoreMethod method, double fraction) {
         for (const auto& row : result.rows)
-            if (row.method == method && row.fraction == fraction) return row.measure.psnr;
+            if (row.method == prune::to_string(method) && row.fraction == fraction) return row.measure.psnr;
         ADD_FAILURE() << "no row";
         return 0.0;
     };
     for (const auto& row : result.rows)
         if (row.fraction == 0.98) {
-            EXPECT_LT(row.delta_psnr, -1.0) << prune::to_string(row.method);
+            EXPECT_LT(row.delta_psnr, -1.0) << row.method;
         }
     EXPECT_GT(at(prune::ScoreMethod::blend, 0.5), at(prune::ScoreMethod::random, 0.5));
     EXPECT_GT(at(prune::ScoreMethod::blend, 0.9), at(prune::ScoreMethod::random, 0.9));
-    EXPECT_NE(result.best_method, prune::ScoreMethod::random);
+    EXPECT_NE(result.best_method, "random");
 
     // SH degrees 0..2 (the scene's), each view's PSNR, and their CSV.
     ASSERT_EQ(result.sh_degrees.size(), 3u);
@@ -235,7 +234,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     ASSERT_EQ(result.sheets.size(), 3 * cameras.size());
     const io::ImageRGB sheet = io::read_image_rgb(out / result.sheets.front(), {1, 1, 1});
     EXPECT_EQ(sheet.width, 3 * 48 + 48 + eval::heat_bar_width(40, 0.1f));
-    const std::string best(prune::to_string(result.best_method));
+    const std::string& best = result.best_method;
     EXPECT_EQ(result.sheets.front(), fs::path("sheets") / ("view_0_" + best + "_0.5.png"));
 
     // The report shows every chart and sheet by a relative path that exists, and names the best method.
@@ -331,6 +330,44 @@ TEST_F(Sweep, RefusesBadOptionsAndEarlierResultsBeforeAnyWork) {
         << "the first run's results are not overwritten unless asked";
 }
 
+// Cluster pruning as a sweep method: its rows sit beside the per-Gaussian ones at the same kept
+// counts, in sweep.csv, the charts and the report.
+TEST_F(Sweep, ClusterPruningIsAMethodAtTheSameKeptCounts) {
+    const fs::path out = dir / "cluster";
+    auto o = options(out);
+    o.methods = {prune::ScoreMethod::blend, prune::ScoreMethod::random};
+    o.cluster = true;
+    // Pictures of 48 x 40: segment them whole, at a scale made for small pictures.
+    o.cluster_options.resolution_scale = 1.0;
+    o.cluster_options.segmentation.k = 150;
+    o.fractions = {0, 0.5, 0.9};
+    o.compare_scoring_cost = false;
+    o.timing_repetitions = 0;
+    const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, o);
+    ASSERT_EQ(result.rows.size(), 9u);
+    EXPECT_GT(result.cluster_seconds, 0.0);
+    const auto csv = read_csv(out / "sweep.csv");
+    ASSERT_EQ(csv.size(), 10u);
+    for (size_t f = 0; f < 3; ++f) {
+        const auto& blend = csv[1 + f];
+        const auto& cluster = csv[1 + 6 + f];
+        EXPECT_EQ(blend[0], "blend");
+        EXPECT_EQ(cluster[0], "cluster");
+        EXPECT_EQ(cluster[1], blend[1]);
+        EXPECT_EQ(cluster[3], blend[3]) << "the same kept count as the per-Gaussian methods";
+        EXPECT_EQ(result.rows[6 + f].method, jobs::kClusterMethod);
+    }
+    EXPECT_EQ(result.rows[6].measure.psnr, result.unpruned.psnr) << "fraction 0: the lossless pass alone";
+    EXPECT_LT(result.rows[8].measure.psnr, result.rows[7].measure.psnr);
+    // Its line in the chart of PSNR against the dropped fraction, named in the legend.
+    const std::string svg = read_text(out / "charts" / "psnr_vs_fraction.svg");
+    EXPECT_EQ(count(svg, "class=\"series\""), 3u);
+    EXPECT_NE(svg.find(">cluster<"), std::string::npos);
+    const std::string html = read_text(result.report);
+    EXPECT_NE(html.find("The cluster method is cluster pruning"), std::string::npos);
+    EXPECT_EQ(count(html, "<td>cluster</td>"), 3u);
+}
+
 // Writes a sweep's report for report_screenshot_test.sh, into VKSPLAT_SAMPLE_REPORT_DIR when set
 // (the script then has Chromium take a screenshot and checks it), else into a folder of its own.
 TEST_F(Sweep, WritesAReportForTheBrowser) {
@@ -338,6 +375,9 @@ TEST_F(Sweep, WritesAReportForTheBrowser) {
     const fs::path out = named != nullptr && *named != '\0' ? fs::path(named) : dir / "report";
     auto o = options(out);
     o.methods = {prune::ScoreMethod::opacity, prune::ScoreMethod::footprint, prune::ScoreMethod::blend};
+    o.cluster = true;  // its line among the others
+    o.cluster_options.resolution_scale = 1.0;
+    o.cluster_options.segmentation.k = 150;
     o.fractions = {0, 0.5, 0.9};
     o.compare_scoring_cost = false;
     o.timing_repetitions = 0;  // timed by the measuring renders alone
@@ -345,7 +385,7 @@ TEST_F(Sweep, WritesAReportForTheBrowser) {
     const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, o);
     EXPECT_TRUE(fs::is_regular_file(out / "report.html"));
     for (const auto& row : result.rows) EXPECT_GT(row.measure.ms_per_frame, 0.0);
-    EXPECT_EQ(result.rows.size(), 9u);
+    EXPECT_EQ(result.rows.size(), 12u);
     EXPECT_EQ(result.sheets.size(), 2 * cameras.size());
 }
 

@@ -22,7 +22,7 @@ namespace {
 struct ClusterArgs {
     GpuOptions gpu;
     std::string scene, cameras, work, out, import_dir, images, test_views;
-    std::string render_views, keep_views, occlusion = "depth", delta = "0.01";
+    std::string render_views, keep_views, occlusion = "depth", delta = "0.01", ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold;
     bool force = false;
@@ -78,17 +78,31 @@ void add_build(CLI::App& c, ClusterArgs& a) {
 
 void add_score(CLI::App& c, ClusterArgs& a) {
     auto& w = a.options.weights;
-    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G*");
-    c.add_option("--beta", w.beta, "weight of the depth variance in G*");
-    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G*");
-    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR");
+    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G* (the issue's: 0.1)")->capture_default_str();
+    c.add_option("--beta", w.beta, "weight of the depth variance in G* (the issue's: 0.1)")->capture_default_str();
+    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G* (the issue's: 1)")
+        ->capture_default_str();
+    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR")
+        ->capture_default_str();
+    c.add_option("--kappa", w.kappa,
+                 "weight of the contribution (largest share of the picture a member paints) in G* (the issue's: 0)")
+        ->capture_default_str();
 }
 
 void add_prune(CLI::App& c, ClusterArgs& a) {
     auto* threshold = c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this");
-    c.add_option("--prune-ratio", a.options.prune_ratio, "else drop this fraction of the clusters, lowest G* first")
+    auto& rule = a.options.selection;
+    c.add_option("--prune-ratio", rule.ratio, "else drop this fraction (see --ratio-of), lowest G* first")
         ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str()
         ->excludes(threshold);
+    c.add_option("--ratio-of", a.ratio_of, "what --prune-ratio counts: gaussians, or clusters (the original rule)")
+        ->check(CLI::IsMember({"gaussians", "clusters"}))
+        ->capture_default_str();
+    c.add_option("--max-contribution-loss", rule.max_contribution_loss,
+                 "stop before the dropped clusters paint more than this share of the picture (1: no limit)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
     c.add_option("-o,--out", a.out, "pruned scene (.ply)")->required();
     c.add_option("--images", a.images, "photos: measure the test views against them too")->check(CLI::ExistingDirectory);
     c.add_option("--test-views", a.test_views, "views to measure on (default: the first 13)");
@@ -125,7 +139,8 @@ int run_stages(ClusterArgs& args, unsigned stages) {
         } catch (const std::exception&) {
             throw InputError("--delta-dist " + args.delta, "expected a distance or auto");
         }
-    options.score_threshold = args.score_threshold;
+    options.selection.threshold = args.score_threshold;
+    options.selection.ratio_of = cluster::parse_ratio_of(args.ratio_of);
     jobs::ClusterStageIo io{args.work, args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing,
                             log_line, {}};
     std::filesystem::create_directories(args.work);
@@ -162,8 +177,11 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     if (stages & kPrune) {
         jobs::ClusterPruneResult result;
         timed("prune", [&] { result = jobs::prune_stage(cloud, options, args.out, io); });
-        std::printf("clusters: %zu, dropped %zu\nGaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n",
-                    result.clusters, result.clusters_dropped, result.count_before, result.count_after,
+        std::printf("clusters: %zu, dropped %zu, painting %.2f%% of the picture%s\n"
+                    "Gaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n",
+                    result.clusters, result.clusters_dropped, 100.0 * result.contribution_dropped,
+                    result.stopped_by_contribution ? " (stopped by --max-contribution-loss before the ratio)" : "",
+                    result.count_before, result.count_after,
                     result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0,
                     result.bytes_before, result.bytes_after, args.out.c_str());
         if (result.count_after == 0) std::printf("warning: the pruned scene is empty\n");
@@ -208,6 +226,10 @@ void register_cluster(CLI::App& app, Action& action) {
         "Stages: regions (render and segment views) -> project (view filter, region id per Gaussian) -> build\n"
         "(neighbours + union-find) -> score (G* per cluster) -> prune (write the scene). Each reads the\n"
         "outputs the earlier ones left in --work, so a stage can be re-run with new parameters alone.\n"
+        "G* = -alpha*spatial - beta*depth + gamma*MVR + kappa*contribution (the largest share of the picture a\n"
+        "member paints). Defaults: contribution alone; drop the lowest clusters until half the Gaussians are gone\n"
+        "or the dropped ones would paint more than --max-contribution-loss of the picture. The issue's method:\n"
+        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,

@@ -29,7 +29,7 @@ struct SweepArgs {
 void print_row(const jobs::SweepRow& row) {
     std::printf("%-12s drop %-5s  %9zu Gaussians %8.2f MB  PSNR %7.3f (%+.3f) dB  SSIM %.4f  vs unpruned %6.2f dB  "
                 "%8.2f ms\n",
-                std::string(prune::to_string(row.method)).c_str(), jobs::fraction_label(row.fraction).c_str(),
+                row.method.c_str(), jobs::fraction_label(row.fraction).c_str(),
                 row.measure.gaussians, double(row.measure.bytes) / 1e6, row.measure.psnr, row.delta_psnr,
                 row.measure.ssim, row.measure.psnr_vs_unpruned, row.measure.ms_per_frame);
     std::fflush(stdout);  // one line per row as it happens, also when stdout is a pipe
@@ -42,7 +42,18 @@ int run_sweep(const SweepArgs& args) {
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     jobs::SweepOptions options;
-    for (const auto& name : args.methods) options.methods.push_back(prune::parse_score_method(name));
+    // No --methods: every per-Gaussian method and cluster pruning.
+    std::vector<std::string> methods = args.methods;
+    if (methods.empty()) {
+        methods = prune::score_method_names();
+        methods.push_back(jobs::kClusterMethod);
+    }
+    for (const auto& name : methods) {
+        if (name == jobs::kClusterMethod)
+            options.cluster = true;
+        else
+            options.methods.push_back(prune::parse_score_method(name));
+    }
     options.fractions = args.fractions;
     if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
     if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
@@ -82,7 +93,7 @@ int run_sweep(const SweepArgs& args) {
     if (result.plain_render_seconds > 0)
         std::printf(" (plain rendering: %.1f s, ratio %.2f)", result.plain_render_seconds,
                     result.scoring_seconds / result.plain_render_seconds);
-    std::printf("\nbest method: %s\nwrote %s\nwrote %s\n", std::string(prune::to_string(result.best_method)).c_str(),
+    std::printf("\nbest method: %s\nwrote %s\nwrote %s\n", result.best_method.c_str(),
                 result.csv.c_str(), result.report.c_str());
     return 0;
 }
@@ -96,7 +107,8 @@ void register_sweep(CLI::App& app, Action& action) {
         "output folder.\n"
         "Example:\n  vksplat sweep lego/point_cloud.ply --cameras lego/cameras.json --images lego/images \\\n"
         "      --background 1,1,1 --out sweep_lego\n"
-        "A quick run: --methods blend,random --fractions 0,0.5,0.9 --max-train-views 10 --timing-reps 0");
+        "A quick run: --methods blend,random --fractions 0,0.5,0.9 --max-train-views 10 --timing-reps 0\n"
+        "The cluster method renders and segments up to 50 of the training views first (see vksplat cluster).");
     auto args = std::make_shared<SweepArgs>();
     command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
@@ -106,9 +118,13 @@ void register_sweep(CLI::App& app, Action& action) {
         ->required()
         ->check(CLI::ExistingDirectory);
     command->add_option("-o,--out", args->out, "folder for the results")->required();
-    command->add_option("--methods", args->methods, "methods to sweep (default: all)")
+    std::vector<std::string> method_names = prune::score_method_names();
+    method_names.push_back(jobs::kClusterMethod);
+    command->add_option("--methods", args->methods,
+                        "methods to sweep (default: all); cluster is cluster pruning at its default settings, "
+                        "ranked at the same kept counts")
         ->delimiter(',')
-        ->check(CLI::IsMember(prune::score_method_names()));
+        ->check(CLI::IsMember(method_names));
     command->add_option("--fractions", args->fractions, "dropped fractions (default: 0,0.1,...,0.9,0.95,0.98)")
         ->delimiter(',')
         ->check(CLI::Range(0.0, 1.0));

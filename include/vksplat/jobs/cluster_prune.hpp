@@ -5,8 +5,9 @@
 //   2 filter:  keep the views whose maps look like parts of a subject (cluster/view_filter.hpp);
 //   3 project: region id of every Gaussian in every kept view, with occlusion (GPU);
 //   4, 5 build: neighbour pairs (KD-tree) merged by union-find under the semantic constraint;
-//   6 score:   spatial variance, depth variance and multi-view visibility per cluster, G*;
-//   7 prune:   drop the clusters of lowest G*.
+//   6 score:   spatial variance, depth variance, multi-view visibility and contribution per
+//              cluster, G*;
+//   7 prune:   drop the clusters of lowest G*, up to a share of the Gaussians and of the picture.
 // In memory here; jobs/cluster_work_dir.hpp saves each stage's output so that later stages can
 // be re-run with new parameters alone.
 #include <cstddef>
@@ -51,9 +52,13 @@ struct ClusterOptions {
     cluster::MergeRule merge;
     // Stage 6.
     cluster::ScoreWeights weights;
-    // Stage 7: drop G* < threshold when given, else the lowest prune_ratio of the clusters.
-    std::optional<double> score_threshold;
-    double prune_ratio = 0.9;
+    // Stage 7: which clusters go (cluster_scores.hpp). The defaults drop the lowest-G* clusters
+    // until half the Gaussians are gone or the next cluster would take the picture's loss past
+    // max_contribution_loss, whichever comes first. The method: weights =
+    // cluster::kOriginalWeights, selection.ratio = 0.9, selection.ratio_of = clusters,
+    // selection.max_contribution_loss = 1.
+    cluster::SelectionRule selection{
+        .threshold = std::nullopt, .ratio = 0.5, .ratio_of = cluster::RatioOf::gaussians, .max_contribution_loss = 0.002};
 };
 
 // Messages for the user: warnings, views dropped and why, statistics. One line per call.
@@ -89,8 +94,16 @@ std::vector<size_t> filter_views(const std::vector<RegionView>& regions, const C
 // `where`) when the aspect ratios differ by more than 1%.
 Camera camera_for_map(const Camera& camera, const cluster::RegionMap& map, const std::string& where);
 
-// Stage 3: labels of every Gaussian of `cloud` in each of `views` (pointers into stage 1's output).
-cluster::ViewLabels project_views(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
+struct ProjectedViews {
+    cluster::ViewLabels labels;
+    // Per Gaussian, the share of a view's pixels it blends into (sum over the pixels of alpha * T,
+    // divided by the pixel count), averaged over the views: what dropping it takes from the picture.
+    std::vector<float> contribution;
+};
+
+// Stage 3: labels of every Gaussian of `cloud` in each of `views` (pointers into stage 1's output),
+// and the Gaussians' contributions, from the same renders.
+ProjectedViews project_views(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
                                   const std::vector<Camera>& cameras, const std::vector<const RegionView*>& views,
                                   const ClusterOptions& options, const prune::Progress& progress = {});
 

@@ -5,8 +5,10 @@
 //   regions/view_NNNN.png  the render it was made from (the view filter measures its edges)
 //   projection.npy         int16 (int32 if ids need it) [V, N]: region id per kept view and Gaussian
 //   projection_views.npy   int32 [V]: the camera index of each row of projection.npy
+//   contribution.npy       float32 [N]: per Gaussian, its mean share of the kept views' pixels
 //   clusters.npy           int32 [N]: cluster id per Gaussian
-//   cluster_scores.npy     float32 [C, 6]: spatial_raw, depth_raw, spatial, depth, MVR, G* per cluster
+//   cluster_scores.npy     float32 [C, 8]: spatial_raw, depth_raw, spatial, depth, MVR, G*,
+//                          contribution_raw (sum over members), contribution (normalised) per cluster
 // Every stage takes the scene sanitised (sanitize()), so that all files index the same Gaussians.
 #include <filesystem>
 #include <optional>
@@ -41,6 +43,8 @@ struct ClusterPruneResult {
     size_t count_before = 0, count_after = 0;
     size_t bytes_before = 0, bytes_after = 0;  // GaussianCloud::ply_bytes
     size_t clusters = 0, clusters_dropped = 0;
+    double contribution_dropped = 0;       // share of the scene's total contribution
+    bool stopped_by_contribution = false;  // the contribution limit ended the drop before the ratio
 };
 // Stage 7: writes the pruned scene to `out`.
 ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options,

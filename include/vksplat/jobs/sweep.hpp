@@ -9,6 +9,10 @@
 // and ranked once, and every fraction is a cut of that ranking. The lossless pass (see
 // prune/selection.hpp) applies before every method, so fraction 0 is the lossless pass alone and a
 // fraction below what it dropped keeps just what it left.
+//
+// Cluster pruning (jobs/cluster_prune.hpp) joins as the method "cluster" when asked: each Gaussian
+// ranks by its cluster's G*, so a kept count takes clusters whole from the best down (the last one
+// partly), after the same lossless pass, at the same kept counts as the per-Gaussian methods.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -18,13 +22,19 @@
 
 #include "vksplat/camera.hpp"
 #include "vksplat/io/write_mode.hpp"
+#include "vksplat/jobs/cluster_prune.hpp"
 #include "vksplat/prune/scores.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::jobs {
 
 struct SweepOptions {
-    std::vector<prune::ScoreMethod> methods;   // empty: every method, in the enum's order
+    // Empty: every method, in the enum's order, unless `cluster` is set (then cluster pruning alone).
+    std::vector<prune::ScoreMethod> methods;
+    // Also sweep cluster pruning (after the methods above), with these options; its region views
+    // are the sweep's training views unless cluster_options.views names others.
+    bool cluster = false;
+    ClusterOptions cluster_options;
     std::vector<double> fractions;             // dropped fractions in [0, 1]; empty: default_sweep_fractions
     std::vector<size_t> test_views;            // empty: default_test_views
     std::vector<size_t> train_views;           // empty: default_train_views
@@ -63,8 +73,11 @@ struct ModelMeasure {
     std::vector<double> view_psnr;     // per test view, against the photos
 };
 
+// The name of cluster pruning's rows.
+inline constexpr const char* kClusterMethod = "cluster";
+
 struct SweepRow {
-    prune::ScoreMethod method = prune::ScoreMethod::opacity;
+    std::string method;                // prune::to_string of the method, or kClusterMethod
     double fraction = 0;               // asked for
     double dropped = 0;                // really dropped: 1 - gaussians / unpruned gaussians
     double delta_psnr = 0;             // psnr - the unpruned scene's psnr (both against the photos)
@@ -86,9 +99,10 @@ struct SweepResult {
     size_t lossless_dropped = 0;
     double scoring_seconds = 0;        // rendering the training views with statistics, summed
     double plain_render_seconds = 0;   // the same views rendered plainly; 0 unless compare_scoring_cost
+    double cluster_seconds = 0;        // cluster pruning's stages 1-6; 0 unless options.cluster
     std::vector<SweepRow> rows;        // method-major, fractions in the order given
     std::vector<ShDegreeMeasure> sh_degrees;  // 0 .. the scene's degree
-    prune::ScoreMethod best_method = prune::ScoreMethod::opacity;
+    std::string best_method;
     std::vector<double> sheet_fractions;      // those sheets were made for
     std::vector<std::filesystem::path> sheets;  // relative to out_dir
     // Absolute paths. totals: the view totals (prune/score_files.hpp), so that `vksplat prune
@@ -114,7 +128,7 @@ std::vector<size_t> spread_views(const std::vector<size_t>& views, size_t count)
 
 // The method with the highest PSNR against the photos averaged over the swept fractions above 0
 // (the first in the rows' order on a tie); the rows' first method when no fraction is above 0.
-prune::ScoreMethod best_method(const std::vector<SweepRow>& rows);
+std::string best_method(const std::vector<SweepRow>& rows);
 
 // Runs the sweep and writes its files into options.out_dir (created if missing). Refuses, before
 // any work, an out_dir that already holds a sweep's files (unless options.mode says overwrite),

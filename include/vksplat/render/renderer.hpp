@@ -88,6 +88,8 @@ public:
                 const RenderTarget& target);
 
     const FrameStats& last_frame() const;
+    // The device it renders on, for passes that work on its output there (cluster projection).
+    const gpu::Context& context() const;
 
 private:
     struct Impl;
