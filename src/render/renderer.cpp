@@ -126,6 +126,7 @@ struct Renderer::Impl {
     const gpu::ComputePipeline& carry_pipeline(bool gather_stats);
     void add_stage_times();
     const gpu::ComputePipeline& stats_pipeline();
+    std::vector<uint32_t> stats_specialization() const;
     // Per-Gaussian statistics of `count` Gaussians to the readback, and from there into `out`
     // (indexed like the input cloud), Gaussian i of the frame being the scene's uploaded[i]
     // (i itself where uploaded is null).
@@ -134,13 +135,19 @@ struct Renderer::Impl {
     GaussianStats gathered;  // the last frame's statistics
 };
 
+// blend_body.glsl's SUM_IN_SUBGROUP: sum a subgroup's statistics before the atomics, except on a
+// CPU implementation, where the atomics are the cheaper of the two.
+std::vector<uint32_t> Renderer::Impl::stats_specialization() const {
+    return {context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 1u};
+}
+
 const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
     if (!blend_stats) {
         if (!context.info().int64_atomics)
             throw GpuError("per-Gaussian statistics need 64-bit buffer atomics, which " + context.info().name +
                            " does not offer");
         blend_stats = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_stats_spv), sizeof(render::BlendStatsPush),
-                                                             std::vector<uint32_t>{}, "blend_stats");
+                                                             stats_specialization(), "blend_stats");
     }
     return *blend_stats;
 }
@@ -291,7 +298,7 @@ const gpu::ComputePipeline& Renderer::Impl::carry_pipeline(bool gather_stats) {
         if (!blend_stats_carry)
             blend_stats_carry = std::make_unique<gpu::ComputePipeline>(
                 context, gpu::spirv_words(blend_stats_carry_spv), sizeof(render::BlendStatsCarryPush),
-                std::vector<uint32_t>{}, "blend_stats_carry");
+                stats_specialization(), "blend_stats_carry");
         return *blend_stats_carry;
     }
     if (!blend_carry)
