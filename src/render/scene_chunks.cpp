@@ -50,7 +50,7 @@ void SceneChunks::stage(const HostScene& host, std::span<const uint32_t> indices
     if (device.half_sh) {
         const auto words = pack_halves(sh);
         std::memcpy(staging_sh.mapped(), words.data(), words.size() * sizeof(uint32_t));
-    } else {
+    } else if (!sh.empty()) {  // an empty chunk's vector has no storage to copy from
         std::memcpy(staging_sh.mapped(), sh.data(), sh.size() * sizeof(float));
     }
 }
