@@ -2,7 +2,6 @@
 // small Gaussians (red lower half, blue upper half) and faint floaters around it, seen by an orbit of cameras.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <filesystem>
@@ -10,6 +9,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
 #include "vksplat/demo_scene.hpp"
 #include "vksplat/io/npy.hpp"
 #include "vksplat/io/ply.hpp"
@@ -50,10 +50,7 @@ GaussianCloud ball_and_floaters() {
 class ClusterPrune : public GpuTest {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vksplat_cluster_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        dir = fresh_test_dir("vksplat_cluster_");
         options.max_views = 8;
         options.resolution_scale = 1.0;
         options.delta = 0.2;

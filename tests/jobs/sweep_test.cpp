@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -17,6 +16,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/comparison_sheet.hpp"
 #include "vksplat/io/image.hpp"
@@ -56,18 +56,11 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
 class Sweep : public GpuTest {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vksplat_sweep_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
+        dir = fresh_test_dir("vksplat_sweep_");
         fs::create_directories(dir / "photos");
         renderer = std::make_unique<Renderer>(context());
         cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
-        for (int i = 0; i < 5; ++i) {
-            Camera camera = Camera::look_at({0.4 * (i - 2), 0.2 * (i % 2), 0.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0},
-                                            48, 40, 45.0, 45.0);
-            camera.name = "view_" + std::to_string(i);
-            cameras.push_back(camera);
-        }
+        cameras = row_of_five_views();
         // The photos: the scene's own renders, in 8 bits (so the unpruned scene scores about 50 dB).
         renderer->set_scene(cloud);
         for (const Camera& camera : cameras) {

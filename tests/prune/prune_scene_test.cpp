@@ -1,7 +1,6 @@
 // The prune job end to end: what it writes and reports, its refusals, saved scores, photos.
 #include <gtest/gtest.h>
 
-#include <unistd.h>
 
 #include <filesystem>
 #include <fstream>
@@ -9,6 +8,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/ply.hpp"
@@ -28,18 +28,10 @@ std::string read_bytes(const fs::path& path) {
 class PruneScene : public GpuTest {
 protected:
     void SetUp() override {
-        dir = fs::temp_directory_path() / ("vksplat_prune_scene_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
+        dir = fresh_test_dir("vksplat_prune_scene_");
         renderer = std::make_unique<Renderer>(context());
         cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
-        for (int i = 0; i < 5; ++i) {
-            Camera camera = Camera::look_at({0.4 * (i - 2), 0.2 * (i % 2), 0.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0},
-                                            48, 40, 45.0, 45.0);
-            camera.name = "view_" + std::to_string(i);
-            cameras.push_back(camera);
-        }
+        cameras = row_of_five_views();
     }
     void TearDown() override {
         fs::remove_all(dir);

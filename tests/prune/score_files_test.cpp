@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <unistd.h>
 
+#include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/npy.hpp"
 #include "vksplat/prune/score_files.hpp"
@@ -15,12 +15,7 @@ namespace fs = std::filesystem;
 
 class ScoreFiles : public ::testing::Test {
 protected:
-    void SetUp() override {
-        dir = fs::temp_directory_path() / ("vksplat_score_files_" + std::to_string(::getpid()) + "_" +
-                                           ::testing::UnitTest::GetInstance()->current_test_info()->name());
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
+    void SetUp() override { dir = fresh_test_dir("vksplat_score_files_"); }
     void TearDown() override { fs::remove_all(dir); }
     fs::path dir;
 };

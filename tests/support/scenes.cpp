@@ -59,4 +59,15 @@ GaussianCloud random_scene(uint32_t seed, size_t n, int sh_degree, float z_near,
     return cloud;
 }
 
+std::vector<Camera> row_of_five_views() {
+    std::vector<Camera> cameras;
+    for (int i = 0; i < 5; ++i) {
+        Camera camera = Camera::look_at({0.4 * (i - 2), 0.2 * (i % 2), 0.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0}, 48, 40,
+                                        45.0, 45.0);
+        camera.name = "view_" + std::to_string(i);
+        cameras.push_back(camera);
+    }
+    return cameras;
+}
+
 }  // namespace vksplat::test

@@ -35,4 +35,8 @@ glm::dvec3 at_pixel(const Camera& camera, double u, double v, double z);
 GaussianCloud random_scene(uint32_t seed, size_t n, int sh_degree, float z_near = 2.0f, float z_far = 8.0f,
                            float scale_min = 0.01f, float scale_max = 0.3f, float half_width = 2.5f);
 
+// Five 48x40 views ("view_0" .. "view_4") on a row in front of the origin, all looking at
+// (0, 0, 5): the small multi-view set of the pruning and sweep tests.
+std::vector<Camera> row_of_five_views();
+
 }  // namespace vksplat::test
