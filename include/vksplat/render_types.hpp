@@ -12,10 +12,6 @@ struct RenderSettings {
     // Also measure, per Gaussian, what it contributed to this view (RenderOutput::stats). Costs
     // atomics in the blend pass, so plain rendering leaves it off and pays nothing for it.
     bool gather_stats = false;
-    // With gather_stats, also sum per Gaussian the squared colour change that removing it alone
-    // would make (GaussianStats::removal_error). A second blend pass, so it costs about one more
-    // blend; needs the whole frame on the device (no chunked frames).
-    bool gather_removal_error = false;
 };
 
 // What each Gaussian did in one view, indexed like the cloud given to the renderer (Gaussians
@@ -35,17 +31,11 @@ struct GaussianStats {
     // alpha * T at the pixel nearest its projected centre: 0 where that pixel was already opaque
     // before the splat was reached (occluded there) or the splat was too faint to blend.
     std::vector<float> centre_weight;
-    // Sum over pixels of |C - C'|^2 (RGB), C' the pixel rendered without this Gaussian alone:
-    // alpha * T * (its colour - the colour behind it), background included. 0 unless
-    // RenderSettings::gather_removal_error. Low where the splat is hidden, faint, or the same
-    // colour as what it covers, i.e. where removing it costs the picture least.
-    std::vector<double> removal_error;
 
     void resize(size_t n) {
         visible.assign(n, 0);
         for (auto* v : {&screen_x, &screen_y, &depth, &radius, &max_weight, &centre_weight}) v->assign(n, 0.0f);
         blend_weight.assign(n, 0.0);
-        removal_error.assign(n, 0.0);
         pixels.assign(n, 0);
     }
     size_t size() const { return visible.size(); }

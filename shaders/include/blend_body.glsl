@@ -7,13 +7,6 @@
 #ifndef CARRY_STATE
 #define CARRY_STATE 0
 #endif
-// REMOVAL_ERROR 1 (blend_removal_error.comp): a second pass over a frame just blended, which sums
-// per Gaussian the squared colour change its removal alone would make (RenderSettings::
-// gather_removal_error). It reads the finished pixels and writes no picture.
-#ifndef REMOVAL_ERROR
-#define REMOVAL_ERROR 0
-#endif
-#define NEEDS_GAUSSIAN_INDEX (GATHER_STATS || REMOVAL_ERROR)
 // The blend pass, included by blend.comp (GATHER_STATS 0) and blend_stats.comp (1), so that the
 // plain pipeline holds no statistics code (and needs no 64-bit integers) at all.
 //
@@ -21,7 +14,7 @@
 // fetched cooperatively in batches into shared memory, then every pixel composites them front
 // to back exactly as the reference's renderCUDA: skip where power > 0 or alpha < 1/255, stop
 // before the transmittance would fall below 1e-4, and add the background times what remains.
-#if NEEDS_GAUSSIAN_INDEX
+#if GATHER_STATS
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -61,7 +54,7 @@ uint touched_blocks(vec2 mean, vec4 conic_opacity, uvec2 tile_origin) {
     return mask;
 }
 
-#if NEEDS_GAUSSIAN_INDEX
+#if GATHER_STATS
 // alpha * T in 32.32 fixed point: integer atomics make the sums the same every run.
 const float WEIGHT_SCALE = 4294967296.0;
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };
@@ -74,7 +67,7 @@ layout(push_constant) uniform Push {
     Vec4s means_depth;
     Vec4s conic_opacity;
     Vec4s colors;
-    Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T (read by REMOVAL_ERROR)
+    Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T
     Floats out_depth;        // expected depth of the blended splats
     Uints out_contributors;  // splats blended into the pixel
 #if GATHER_STATS
@@ -82,9 +75,6 @@ layout(push_constant) uniform Push {
     Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
     Uints stat_pixels;       // per Gaussian: pixels where alpha >= 1/255
     Uints stat_centre_weight;  // per Gaussian: alpha * T at the pixel holding its centre (float bits)
-#endif
-#if REMOVAL_ERROR
-    Uint64s stat_removal_error;  // per Gaussian: sum of |colour change if removed|^2 (fixed point)
 #endif
 #if CARRY_STATE
     // Two buffers and a word, so that even the statistics variant stays within the 128 bytes of
@@ -102,7 +92,10 @@ const uint CARRY_LAST = 2u;   // write the finished pixel (background added) ins
 const uint CARRY_STOPPED = 0x80000000u;
 #endif
 
-#if NEEDS_GAUSSIAN_INDEX
+#if GATHER_STATS
+// Only the one pixel nearest the projected centre writes it, so no atomic is needed; it stays 0
+// where the pixel finished before reaching the splat (occluded) or the splat is too faint there.
+//
 // The pixels of a subgroup composite the same splat at the same time, and a large splat covers
 // them all: they are summed in the subgroup first and one invocation adds the total, instead of
 // every pixel contending for the same address (per-pixel atomics made scoring snowmiku's views
@@ -112,18 +105,9 @@ const uint CARRY_STOPPED = 0x80000000u;
 // and the subgroup reductions are not (snowmiku --stats 2.59 s per view with atomics, 3.34 s summed).
 layout(constant_id = 0) const bool SUM_IN_SUBGROUP = true;
 
-bool whole_subgroup_on(uint gaussian) {
-    return SUM_IN_SUBGROUP && subgroupBallot(gaussian == subgroupBroadcastFirst(gaussian)) == subgroupBallot(true);
-}
-#endif
-
-#if GATHER_STATS
-// Only the one pixel nearest the projected centre writes the centre weight, so no atomic is
-// needed; it stays 0 where the pixel finished before reaching the splat (occluded) or the splat
-// is too faint there.
 void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
     if (all(equal(uvec2(ivec2(floor(mean + 0.5))), pixel))) pc.stat_centre_weight.v[gaussian] = floatBitsToUint(weight);
-    if (whole_subgroup_on(gaussian)) {
+    if (SUM_IN_SUBGROUP && subgroupBallot(gaussian == subgroupBroadcastFirst(gaussian)) == subgroupBallot(true)) {
         const float weight_sum = subgroupAdd(weight);
         const uint max_bits = subgroupMax(floatBitsToUint(weight));
         const uint pixels = subgroupAdd(1u);
@@ -142,32 +126,11 @@ void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
 }
 #endif
 
-#if REMOVAL_ERROR
-// The pixel as the blend before this pass finished it, background included.
-vec3 finished_color = vec3(0.0);
-
-// Removing splat i alone takes away what it added, weight * colour, and lets what lies behind it
-// show with T instead of T * (1 - alpha): that part, finished - colour up to and including i,
-// grows by alpha / (1 - alpha). The change is alpha * T * (colour - colour behind), exactly what
-// the reference would render without it (if no pixel stops differently). Squared, because PSNR
-// measures squared error.
-void record_removal_error(uint gaussian, float alpha, float weight, vec3 color, vec3 color_up_to) {
-    const vec3 change = weight * color - alpha / (1.0 - alpha) * (finished_color - color_up_to);
-    const float squared = dot(change, change);
-    if (whole_subgroup_on(gaussian)) {
-        const float sum = subgroupAdd(squared);
-        if (subgroupElect() && sum > 0.0) atomicAdd(pc.stat_removal_error.v[gaussian], uint64_t(sum * WEIGHT_SCALE));
-        return;
-    }
-    if (squared > 0.0) atomicAdd(pc.stat_removal_error.v[gaussian], uint64_t(squared * WEIGHT_SCALE));
-}
-#endif
-
 shared vec4 batch_mean_depth[BATCH];
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
 shared uint batch_blocks[BATCH];  // bit b: the splat can touch block b
-#if NEEDS_GAUSSIAN_INDEX
+#if GATHER_STATS
 shared uint batch_gaussian[BATCH];
 #endif
 shared uint finished_pixels;
@@ -209,9 +172,6 @@ void blend_splat(uint j, float alpha, uvec2 pixel, inout PixelState state) {
     record_stats(batch_gaussian[j], weight, batch_mean_depth[j].xy, pixel);
 #endif
     state.color += batch_color[j].rgb * weight;
-#if REMOVAL_ERROR
-    record_removal_error(batch_gaussian[j], alpha, weight, batch_color[j].rgb, state.color);
-#endif
     state.depth_sum += batch_mean_depth[j].z * weight;
     state.transmittance = next_transmittance;
     ++state.contributors;
@@ -227,9 +187,6 @@ void main() {
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
     PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, !inside);
-#if REMOVAL_ERROR
-    if (inside) finished_color = pc.out_color_alpha.v[pixel.y * cam.size.x + pixel.x].rgb;
-#endif
 #if CARRY_STATE
     if (inside && (pc.carry_flags & CARRY_LOAD) != 0u) {
         const uint index = pixel.y * cam.size.x + pixel.x;
@@ -265,7 +222,7 @@ void main() {
             batch_conic_opacity[gl_LocalInvocationIndex] = next_conic_opacity;
             batch_color[gl_LocalInvocationIndex] = next_color;
             batch_blocks[gl_LocalInvocationIndex] = touched_blocks(next_mean_depth.xy, next_conic_opacity, tile_origin);
-#if NEEDS_GAUSSIAN_INDEX
+#if GATHER_STATS
             batch_gaussian[gl_LocalInvocationIndex] = next_gaussian;
 #endif
         }
@@ -292,9 +249,6 @@ void main() {
         barrier();  // the next batch overwrites shared memory
     }
 
-#if REMOVAL_ERROR
-    return;  // the picture is the previous pass's
-#endif
     if (inside) {
         const uint index = pixel.y * cam.size.x + pixel.x;
 #if CARRY_STATE

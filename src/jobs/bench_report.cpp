@@ -89,7 +89,6 @@ std::string bench_json(const BenchReport& report) {
                      {"gaussians", report.gaussians},
                      {"half_sh", report.half_sh},
                      {"blend_stats", report.blend_stats},
-                     {"removal_error", report.removal_error},
                      {"mean_of_medians_ms", report.views.mean_of_medians_ms}};
     if (report.rates)
         j["rates"] = {{"copy_gb_per_s", report.rates->copy_bytes_per_ms * 1e-6},

@@ -238,10 +238,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     result.sh_degrees = measure_sh_degrees(renderer, cloud, targets, options, progress);
 
     const auto scoring_start = std::chrono::steady_clock::now();
-    RenderSettings scoring = options.settings;
-    scoring.gather_removal_error = std::any_of(methods.begin(), methods.end(), prune::uses_removal_error);
     const prune::ViewTotals totals = prune::accumulate(
-        renderer, cloud, cameras, result.train_views, scoring, [&](size_t done, size_t total) {
+        renderer, cloud, cameras, result.train_views, options.settings, [&](size_t done, size_t total) {
             if (progress.step) progress.step("scoring the training views", done, total);
         });
     result.scoring_seconds = seconds_since(scoring_start);

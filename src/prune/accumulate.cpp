@@ -16,7 +16,6 @@ void add_view(ViewTotals& totals, const GaussianStats& stats, const std::vector<
         totals.blend[i] += stats.blend_weight[i];
         totals.blend_max[i] = std::max(totals.blend_max[i], stats.max_weight[i]);
         totals.pixels[i] += stats.pixels[i];
-        totals.removal_error[i] += stats.removal_error[i];
         if (!stats.visible[i]) continue;
         const double radius = stats.radius[i];
         totals.footprint[i] += double(opacity[i]) * std::numbers::pi * radius * radius;
@@ -38,7 +37,6 @@ ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std:
     const std::vector<float> opacity = opacities(cloud);
 
     ViewTotals totals(cloud.size());
-    totals.has_removal_error = settings.gather_removal_error;
     for (size_t done = 0; done < views.size(); ++done) {
         add_view(totals, renderer.render(cameras[views[done]], with_stats).stats, opacity);
         ++totals.views;

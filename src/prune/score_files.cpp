@@ -11,10 +11,7 @@
 namespace vksplat::prune {
 namespace {
 
-// blend, blend_max, pixels, footprint, views_visible, removal_error. Files saved before the removal
-// error existed have the first five and load without it.
-constexpr size_t kTotalColumns = 6;
-constexpr size_t kTotalColumnsWithoutRemoval = 5;
+constexpr size_t kTotalColumns = 5;  // blend, blend_max, pixels, footprint, views_visible
 
 std::string shape_text(const std::vector<size_t>& shape) {
     std::string text = "[";
@@ -26,17 +23,15 @@ std::string shape_text(const std::vector<size_t>& shape) {
 // edited) become 0 rather than undefined behaviour.
 uint64_t count_from(float value) { return value > 0.0f ? uint64_t(std::min(value, 1e18f)) : 0; }
 
-ViewTotals totals_from_rows(const std::vector<float>& rows, size_t n, size_t columns) {
+ViewTotals totals_from_rows(const std::vector<float>& rows, size_t n) {
     ViewTotals totals(n);
-    totals.has_removal_error = columns == kTotalColumns;
     for (size_t i = 0; i < n; ++i) {
-        const float* row = &rows[i * columns];
+        const float* row = &rows[i * kTotalColumns];
         totals.blend[i] = row[0];
         totals.blend_max[i] = row[1];
         totals.pixels[i] = count_from(row[2]);
         totals.footprint[i] = row[3];
         totals.views_visible[i] = uint32_t(std::min<uint64_t>(count_from(row[4]), UINT32_MAX));
-        if (totals.has_removal_error) totals.removal_error[i] = row[5];
     }
     return totals;
 }
@@ -48,18 +43,16 @@ void save_scores(const std::vector<float>& scores, const std::filesystem::path& 
 }
 
 void save_totals(const ViewTotals& totals, const std::filesystem::path& path, io::WriteMode mode) {
-    const size_t columns = totals.has_removal_error ? kTotalColumns : kTotalColumnsWithoutRemoval;
-    std::vector<float> rows(totals.size() * columns);
+    std::vector<float> rows(totals.size() * kTotalColumns);
     for (size_t i = 0; i < totals.size(); ++i) {
-        float* row = &rows[i * columns];
+        float* row = &rows[i * kTotalColumns];
         row[0] = float(totals.blend[i]);
         row[1] = totals.blend_max[i];
         row[2] = float(totals.pixels[i]);
         row[3] = float(totals.footprint[i]);
         row[4] = float(totals.views_visible[i]);
-        if (totals.has_removal_error) row[5] = float(totals.removal_error[i]);
     }
-    io::write_npy(path, rows.data(), {totals.size(), columns}, mode);
+    io::write_npy(path, rows.data(), {totals.size(), kTotalColumns}, mode);
 }
 
 ScoreFile load_score_file(const std::filesystem::path& path) {
@@ -68,11 +61,11 @@ ScoreFile load_score_file(const std::filesystem::path& path) {
     ScoreFile file;
     if (array.shape.size() == 1)
         file.scores = values;
-    else if (array.shape.size() == 2 && (array.shape[1] == kTotalColumns || array.shape[1] == kTotalColumnsWithoutRemoval))
-        file.totals = totals_from_rows(values, array.shape[0], array.shape[1]);
+    else if (array.shape.size() == 2 && array.shape[1] == kTotalColumns)
+        file.totals = totals_from_rows(values, array.shape[0]);
     else
         throw InputError(path.string(), "has shape " + shape_text(array.shape) +
-                                            "; expected scores [N] or view totals [N, 6] (or [N, 5] without removal errors)");
+                                            "; expected scores [N] or view totals [N, 5]");
     return file;
 }
 

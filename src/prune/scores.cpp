@@ -16,14 +16,13 @@ struct MethodName {
     ScoreMethod method;
     std::string_view name;
 };
-constexpr std::array<MethodName, 7> kMethods = {{
+constexpr std::array<MethodName, 6> kMethods = {{
     {ScoreMethod::opacity, "opacity"},
     {ScoreMethod::footprint, "footprint"},
     {ScoreMethod::blend, "blend"},
     {ScoreMethod::blend_max, "blend-max"},
     {ScoreMethod::volume_blend, "volume-blend"},
     {ScoreMethod::random, "random"},
-    {ScoreMethod::removal_error, "removal-error"},
 }};
 
 // LightGaussian's exponent on the normalised volume: large Gaussians gain a little, so that a big
@@ -82,8 +81,6 @@ ScoreMethod parse_score_method(std::string_view name) {
 
 bool uses_views(ScoreMethod method) { return method != ScoreMethod::opacity && method != ScoreMethod::random; }
 
-bool uses_removal_error(ScoreMethod method) { return method == ScoreMethod::removal_error; }
-
 std::vector<float> opacities(const GaussianCloud& cloud) {
     std::vector<float> opacity(cloud.size());
     for (size_t i = 0; i < cloud.size(); ++i) opacity[i] = float(1.0 / (1.0 + std::exp(-double(cloud.opacity_logits[i]))));
@@ -101,11 +98,6 @@ std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, S
         case ScoreMethod::blend_max: return totals.blend_max;
         case ScoreMethod::volume_blend: return volume_blend(cloud, totals);
         case ScoreMethod::random: return random_scores(cloud.size(), seed);
-        case ScoreMethod::removal_error:
-            if (!totals.has_removal_error)
-                throw InputError("the view totals", "hold no removal errors (gathered without them, or saved as [N, 5] "
-                                                    "before they existed); score the views again");
-            return as_float(totals.removal_error);
     }
     throw std::invalid_argument("prune::score: unknown ScoreMethod");
 }

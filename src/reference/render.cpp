@@ -1,7 +1,6 @@
 // The reference's binning and renderCUDA: per-tile lists in depth order, front-to-back blending.
 #include <algorithm>
 #include <cstdint>
-#include <stdexcept>
 #include <vector>
 
 #include "reference/tile_grid.hpp"
@@ -52,15 +51,8 @@ void record(GaussianStats* stats, uint32_t i, double weight, glm::dvec2 mean, gl
     ++stats->pixels[i];
 }
 
-// A splat blended into a pixel, kept until the pixel is finished to measure its removal error.
-struct Blended {
-    uint32_t index;
-    double alpha, weight;
-    glm::dvec3 color, color_up_to;  // its colour; the pixel's colour with it added
-};
-
 PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std::vector<uint32_t>& list, glm::dvec2 pixel,
-                        GaussianStats* stats, std::vector<Blended>* blended) {
+                        GaussianStats* stats) {
     PixelResult result;
     for (uint32_t i : list) {
         const ProjectedGaussian& s = splats[i];
@@ -77,24 +69,13 @@ PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std:
         }
         const double weight = alpha * result.transmittance;
         record(stats, i, weight, s.mean, pixel);
-        const glm::dvec3 color(s.color[0], s.color[1], s.color[2]);
-        result.color += color * weight;
-        if (blended) blended->push_back({i, alpha, weight, color, result.color});
+        result.color += glm::dvec3(s.color[0], s.color[1], s.color[2]) * weight;
         result.depth_sum += s.depth * weight;
         result.weight_sum += weight;
         result.transmittance = test_t;
         ++result.contributors;
     }
     return result;
-}
-
-// Without splat b the pixel loses weight * colour, and what lies behind b (finished - colour up
-// to b) is seen through T instead of T * (1 - alpha).
-void record_removal_errors(const std::vector<Blended>& blended, glm::dvec3 finished, GaussianStats& stats) {
-    for (const Blended& b : blended) {
-        const glm::dvec3 change = b.weight * b.color - b.alpha / (1.0 - b.alpha) * (finished - b.color_up_to);
-        stats.removal_error[b.index] += glm::dot(change, change);
-    }
 }
 
 }  // namespace
@@ -117,8 +98,6 @@ RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const Rend
     out.alpha.resize(pixels);
     out.depth.resize(pixels);
     out.contributors.resize(pixels);
-    if (settings.gather_removal_error && !settings.gather_stats)
-        throw std::invalid_argument("RenderSettings::gather_removal_error needs gather_stats");
     GaussianStats* stats = settings.gather_stats ? &out.stats : nullptr;
     if (stats) {
         stats->resize(cloud.size());
@@ -131,19 +110,14 @@ RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const Rend
             stats->radius[i] = static_cast<float>(splats[i].radius);
         }
     }
-    std::vector<Blended> blended;
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             const size_t tile = static_cast<size_t>(y / static_cast<int>(kTileHeight)) * grid.x +
                                 static_cast<size_t>(x / static_cast<int>(kTileWidth));
-            blended.clear();
-            const PixelResult p = blend_pixel(splats, lists[tile], glm::dvec2(x, y), stats,
-                                              settings.gather_removal_error ? &blended : nullptr);
+            const PixelResult p = blend_pixel(splats, lists[tile], glm::dvec2(x, y), stats);
             const size_t i = static_cast<size_t>(y) * camera.width + x;
-            const glm::dvec3 background(settings.background[0], settings.background[1], settings.background[2]);
-            const glm::dvec3 finished = p.color + p.transmittance * background;
-            if (stats && settings.gather_removal_error) record_removal_errors(blended, finished, *stats);
-            for (int c = 0; c < 3; ++c) out.rgb[i * 3 + c] = static_cast<float>(finished[c]);
+            for (int c = 0; c < 3; ++c)
+                out.rgb[i * 3 + c] = static_cast<float>(p.color[c] + p.transmittance * settings.background[c]);
             out.alpha[i] = static_cast<float>(1.0 - p.transmittance);
             out.depth[i] = p.weight_sum > 0.0 ? static_cast<float>(p.depth_sum / p.weight_sum) : 0.0f;
             out.contributors[i] = p.contributors;

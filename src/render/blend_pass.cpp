@@ -17,11 +17,6 @@ void record_blend_stats_carry(gpu::CommandStream& stream, const gpu::ComputePipe
     stream.dispatch(pipeline, push, tiles_x, tiles_y);
 }
 
-void record_blend_removal_error(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
-                                const BlendRemovalErrorPush& push, uint32_t tiles_x, uint32_t tiles_y) {
-    stream.dispatch(pipeline, push, tiles_x, tiles_y);
-}
-
 void record_blend_stats(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                         const BlendStatsPush& push, uint32_t tiles_x, uint32_t tiles_y) {
     stream.dispatch(pipeline, push, tiles_x, tiles_y);

@@ -90,8 +90,7 @@ void FrameResources::ensure_stats(uint32_t count) {
     replace(stat_max_weight, c, uint64_t(count) * 4, "max weight per Gaussian");
     replace(stat_pixels, c, uint64_t(count) * 4, "pixels per Gaussian");
     replace(stat_centre_weight, c, uint64_t(count) * 4, "centre-pixel weight per Gaussian");
-    replace(stat_removal_error, c, uint64_t(count) * 8, "removal error per Gaussian");
-    stats_readback = gpu::Buffer(c, uint64_t(count) * 48, gpu::MemoryKind::readback, "statistics readback");
+    stats_readback = gpu::Buffer(c, uint64_t(count) * 36, gpu::MemoryKind::readback, "statistics readback");
     stats_capacity = count;
 }
 
@@ -137,7 +136,7 @@ uint64_t FrameResources::device_bytes() const {
                                  &visible, &visible_offsets, &depth_keys, &depth_values, &sorted_tile_counts,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
                                  &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels,
-                                 &stat_centre_weight, &stat_removal_error, &carried_color, &carried_depth_count})
+                                 &stat_centre_weight, &carried_color, &carried_depth_count})
         total += b->size();
     if (scan_scratch) total += scan_scratch->device_bytes();
     if (sort_scratch) total += sort_scratch->device_bytes();

@@ -30,9 +30,8 @@ struct FrameResources {
 
     // Per-Gaussian statistics (allocated on the first frame that asks for them).
     uint32_t stats_capacity = 0;
-    gpu::Buffer stat_weight, stat_max_weight, stat_pixels, stat_centre_weight, stat_removal_error;
-    // host-visible: means_depth, weight, max weight, pixels, centre weight, removal error
-    gpu::Buffer stats_readback;
+    gpu::Buffer stat_weight, stat_max_weight, stat_pixels, stat_centre_weight;
+    gpu::Buffer stats_readback;  // host-visible: means_depth, weight, max weight, pixels, centre weight
 
     // Per pixel and per tile.
     uint32_t pixel_capacity = 0, tile_capacity = 0;

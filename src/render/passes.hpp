@@ -57,11 +57,6 @@ struct BlendStatsPush {
     BlendPush blend;
     Address stat_weight, stat_max_weight, stat_pixels, stat_centre_weight;
 };
-// The removal-error pass (blend_removal_error.comp) reads the finished frame in out_color_alpha.
-struct BlendRemovalErrorPush {
-    BlendPush blend;
-    Address stat_removal_error;
-};
 // The chunk variants (blend_carry.comp, blend_stats_carry.comp): the carried per-pixel state and
 // the CARRY_ flags of blend_body.glsl.
 struct CarryPush {
@@ -81,8 +76,6 @@ void record_blend(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeli
                   uint32_t tiles_x, uint32_t tiles_y);
 void record_blend_carry(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendCarryPush& push,
                         uint32_t tiles_x, uint32_t tiles_y);
-void record_blend_removal_error(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
-                                const BlendRemovalErrorPush& push, uint32_t tiles_x, uint32_t tiles_y);
 void record_blend_stats_carry(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                               const BlendStatsCarryPush& push, uint32_t tiles_x, uint32_t tiles_y);
 void record_blend_stats(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,

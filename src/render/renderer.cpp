@@ -21,7 +21,6 @@
 #include "render/target_copy.hpp"
 #include "shaders/blend.spv.h"
 #include "shaders/blend_carry.spv.h"
-#include "shaders/blend_removal_error.spv.h"
 #include "shaders/blend_stats_carry.spv.h"
 #include "shaders/blend_stats.spv.h"
 #include "shaders/compact_visible.spv.h"
@@ -61,7 +60,7 @@ struct Renderer::Impl {
     gpu::PrefixScan scan;
     gpu::RadixSort sort;
     gpu::CommandStream stream;
-    std::unique_ptr<gpu::ComputePipeline> blend_stats, blend_removal_error;  // built on first use
+    std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
     std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
     std::unique_ptr<gpu::ComputePipeline> blend_carry, blend_stats_carry;  // built on first use (chunked frames)
     bool recorded = false;                               // record() was called: frames may be in flight
@@ -99,16 +98,15 @@ struct Renderer::Impl {
 
     // Everything from the per-frame parameters to the blended image of `source` (the scene, or one
     // chunk of it), recorded into `stream`: the passes up to the tile ranges, then the blend.
-    // removal_error (RenderSettings::gather_removal_error) needs gather_stats and no carry_flags.
     void record_passes(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
-                       bool gather_stats, bool removal_error);
+                       bool gather_stats);
     void record_tiles(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
-                      bool gather_stats, bool removal_error);
+                      bool gather_stats);
     // With carry_flags (blend_body.glsl's CARRY_ flags) the blend continues from, and except for
     // the last chunk stores, the carried pixel state.
     void record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y, bool gather_stats,
-                           bool removal_error, const uint32_t* carry_flags = nullptr);
-    void record_frame(const render::CameraParams& params, bool read_back, const RenderSettings& settings);
+                           const uint32_t* carry_flags = nullptr);
+    void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
     void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                      const RenderTarget& target);
     const gpu::ComputePipeline& pack_pipeline();
@@ -128,13 +126,12 @@ struct Renderer::Impl {
     const gpu::ComputePipeline& carry_pipeline(bool gather_stats);
     void add_stage_times();
     const gpu::ComputePipeline& stats_pipeline();
-    const gpu::ComputePipeline& removal_error_pipeline();
     std::vector<uint32_t> stats_specialization() const;
     // Per-Gaussian statistics of `count` Gaussians to the readback, and from there into `out`
     // (indexed like the input cloud), Gaussian i of the frame being the scene's uploaded[i]
     // (i itself where uploaded is null).
-    void copy_stats(gpu::CommandStream& stream, uint32_t count, bool removal_error);
-    void unpack_stats(uint32_t count, const uint32_t* uploaded, bool removal_error, GaussianStats& out) const;
+    void copy_stats(gpu::CommandStream& stream, uint32_t count);
+    void unpack_stats(uint32_t count, const uint32_t* uploaded, GaussianStats& out) const;
     GaussianStats gathered;  // the last frame's statistics
 };
 
@@ -155,23 +152,14 @@ const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
     return *blend_stats;
 }
 
-const gpu::ComputePipeline& Renderer::Impl::removal_error_pipeline() {
-    stats_pipeline();  // the same device check
-    if (!blend_removal_error)
-        blend_removal_error = std::make_unique<gpu::ComputePipeline>(
-            context, gpu::spirv_words(blend_removal_error_spv), sizeof(render::BlendRemovalErrorPush),
-            stats_specialization(), "blend_removal_error");
-    return *blend_removal_error;
-}
-
 void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::CameraParams& params,
-                                   const render::GpuScene& source, bool gather_stats, bool removal_error) {
-    record_tiles(stream, params, source, gather_stats, removal_error);
-    record_blend_pass(stream, params.size[2], params.size[3], gather_stats, removal_error);
+                                   const render::GpuScene& source, bool gather_stats) {
+    record_tiles(stream, params, source, gather_stats);
+    record_blend_pass(stream, params.size[2], params.size[3], gather_stats);
 }
 
 void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::CameraParams& params,
-                                  const render::GpuScene& source, bool gather_stats, bool removal_error) {
+                                  const render::GpuScene& source, bool gather_stats) {
     using namespace render;
     const uint32_t n = source.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
@@ -188,7 +176,6 @@ void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::Came
         stream.fill(f.stat_pixels, 0);
         stream.fill(f.stat_centre_weight, 0);
     }
-    if (removal_error) stream.fill(f.stat_removal_error, 0);
     stream.barrier();
 
     record_preprocess(stream, preprocess,
@@ -250,7 +237,7 @@ void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::Came
 }
 
 void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y,
-                                       bool gather_stats, bool removal_error, const uint32_t* carry_flags) {
+                                       bool gather_stats, const uint32_t* carry_flags) {
     using namespace render;
     auto& f = frame;
     const BlendPush blend_push{f.camera.address(),      f.ranges.address(),        f.tile_values.address(),
@@ -270,22 +257,15 @@ void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tile
         record_blend(stream, blend, blend_push, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
-    if (removal_error) {
-        // It reads the pixels the blend just finished.
-        record_blend_removal_error(stream, removal_error_pipeline(), {blend_push, f.stat_removal_error.address()},
-                                   tiles_x, tiles_y);
-        stream.barrier();
-        stream.mark("removal error");
-    }
 }
 
-void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, const RenderSettings& settings) {
+void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats) {
     const uint32_t pixels = params.size[0] * params.size[1];
     const uint32_t n = scene.count;
     auto& f = frame;
     stream.begin();
-    record_passes(stream, params, scene, settings.gather_stats, settings.gather_removal_error);
-    if (settings.gather_stats) copy_stats(stream, n, settings.gather_removal_error);
+    record_passes(stream, params, scene, gather_stats);
+    if (gather_stats) copy_stats(stream, n);
 
     const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
     if (read_back) {
@@ -306,11 +286,10 @@ uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entr
     const auto& f = frame;
     const uint32_t carried = std::max(carry ? pixels : 0u, f.carry_capacity);
     const uint64_t stats_count = std::max(gather_stats ? std::max(gaussians, 1u) : 0u, f.stats_capacity);
-    // Five statistics buffers: weight 8, max weight 4, pixels 4, centre weight 4, removal error 8.
     return render::FrameResources::bytes_for(context, std::max(gaussians, f.gaussian_capacity),
                                              std::max(entries, f.entry_capacity), std::max(pixels, f.pixel_capacity),
                                              std::max(tiles, f.tile_capacity), false) +
-           uint64_t(carried) * 24 + stats_count * 28 + f.packed.size();
+           uint64_t(carried) * 24 + stats_count * 20 + f.packed.size();
 }
 
 const gpu::ComputePipeline& Renderer::Impl::carry_pipeline(bool gather_stats) {
@@ -343,8 +322,6 @@ void Renderer::Impl::add_stage_times() {
 
 void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
     camera.validate();
-    if (settings.gather_removal_error && !settings.gather_stats)
-        throw std::invalid_argument("RenderSettings::gather_removal_error needs gather_stats");
     const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
     const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
     stats = {};
@@ -360,11 +337,6 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
         scene.params = gpu::Buffer();
         scene.sh = gpu::Buffer();
     }
-    if (settings.gather_removal_error)
-        throw GpuError("removal errors need the whole " + std::to_string(camera.width) + "x" +
-                       std::to_string(camera.height) + " frame of " + std::to_string(scene.count) +
-                       " Gaussians on the device, which exceeds the memory budget of " + mebibytes(budget) +
-                       "; raise --memory-budget or score with a method that does not need them (e.g. blend)");
     run_chunked(camera, settings, read_back);
 }
 
@@ -376,7 +348,6 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
     if (settings.gather_stats) {
         stats_pipeline();
-        if (settings.gather_removal_error) removal_error_pipeline();
         frame.ensure_stats(scene.count);
     }
 
@@ -384,7 +355,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
                                                        scene.half_sh, frame.entry_capacity);
         stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
-        record_frame(params, read_back, settings);
+        record_frame(params, read_back, settings.gather_stats);
         uint32_t counters[render::kCounterCount];
         const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
@@ -409,7 +380,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     if (settings.gather_stats) {
         gathered = {};
         gathered.resize(input_count);
-        unpack_stats(scene.count, nullptr, settings.gather_removal_error, gathered);
+        unpack_stats(scene.count, nullptr, gathered);
     }
     stats.scene_bytes = scene_device_bytes();
     stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
@@ -428,7 +399,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const auto need = [&](uint32_t g, uint32_t e) {
         return render::GpuScene::bytes_for(g, degree, half) +
                render::FrameResources::bytes_for(context, g, e, pixels, tiles, true) +
-               (with_stats ? uint64_t(std::max(g, 1u)) * 28 : 0);
+               (with_stats ? uint64_t(std::max(g, 1u)) * 20 : 0);
     };
     const auto entries_for = [&](uint32_t g) {
         return static_cast<uint32_t>(std::min(std::ceil(g * chunk_entries_per_gaussian), double(0x7fffffffu)));
@@ -493,7 +464,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
         stream.begin();
         chunks->record_upload(stream);
-        record_tiles(stream, params, chunks->device, with_stats, false);
+        record_tiles(stream, params, chunks->device, with_stats);
         stream.copy(frame.counters, frame.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
         stream.submit_and_wait();
         add_stage_times();
@@ -524,8 +495,8 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         const bool last = pending.empty();
         const uint32_t flags = (drawn > 0 ? render::kCarryLoad : 0u) | (last ? render::kCarryLast : 0u);
         stream.begin();
-        record_blend_pass(stream, params.size[2], params.size[3], with_stats, false, &flags);
-        if (with_stats) copy_stats(stream, count, false);
+        record_blend_pass(stream, params.size[2], params.size[3], with_stats, &flags);
+        if (with_stats) copy_stats(stream, count);
         if (last && read_back) {
             stream.copy(frame.color_alpha, frame.readback, uint64_t(pixels) * 16, 0, 0);
             stream.copy(frame.depth, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
@@ -533,7 +504,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         }
         stream.submit_and_wait();
         add_stage_times();
-        if (with_stats) unpack_stats(count, indices.data(), false, gathered);
+        if (with_stats) unpack_stats(count, indices.data(), gathered);
         stats.visible += counters[render::kCounterVisible];
         stats.tile_entries += needed;
         ++drawn;
@@ -597,7 +568,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
     stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
     gpu::CommandStream out(context, gpu::CommandStream::Recording{command_buffer});
     out.barrier_after_everything();
-    record_passes(out, params, scene, false, false);
+    record_passes(out, params, scene, false);
     const gpu::Buffer* source = &frame.color_alpha;
     if (packs) {
         const bool bgra = target.format == VK_FORMAT_B8G8R8A8_UNORM || target.format == VK_FORMAT_B8G8R8A8_SRGB;
@@ -618,10 +589,9 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
 Renderer::Renderer(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
 Renderer::~Renderer() { impl_->wait_for_recorded_frames(); }
 
-void Renderer::Impl::copy_stats(gpu::CommandStream& stream, uint32_t count, bool removal_error) {
+void Renderer::Impl::copy_stats(gpu::CommandStream& stream, uint32_t count) {
     // Layout of the readback: means_depth (vec4 with the radius, 0 when the reference would cull),
-    // weight (uint64), max weight, pixels, centre weight, 4 bytes of padding so that the last
-    // array is 8-byte aligned, removal error (uint64); each array `count` long.
+    // weight (uint64), max weight, pixels, centre weight; each array `count` long.
     const uint64_t g = count;
     auto& f = frame;
     stream.copy(f.means_depth, f.stats_readback, g * 16, 0, 0);
@@ -629,11 +599,9 @@ void Renderer::Impl::copy_stats(gpu::CommandStream& stream, uint32_t count, bool
     stream.copy(f.stat_max_weight, f.stats_readback, g * 4, 0, g * 24);
     stream.copy(f.stat_pixels, f.stats_readback, g * 4, 0, g * 28);
     stream.copy(f.stat_centre_weight, f.stats_readback, g * 4, 0, g * 32);
-    if (removal_error) stream.copy(f.stat_removal_error, f.stats_readback, g * 8, 0, g * 40);
 }
 
-void Renderer::Impl::unpack_stats(uint32_t count, const uint32_t* uploaded, bool removal_error,
-                                  GaussianStats& out) const {
+void Renderer::Impl::unpack_stats(uint32_t count, const uint32_t* uploaded, GaussianStats& out) const {
     const size_t n = count;
     const auto* base = static_cast<const char*>(frame.stats_readback.mapped());
     const auto* means = reinterpret_cast<const float*>(base);
@@ -641,7 +609,6 @@ void Renderer::Impl::unpack_stats(uint32_t count, const uint32_t* uploaded, bool
     const auto* max_weight = reinterpret_cast<const float*>(base + n * 24);
     const auto* pixels = reinterpret_cast<const uint32_t*>(base + n * 28);
     const auto* centre_weight = reinterpret_cast<const float*>(base + n * 32);
-    const auto* removal = reinterpret_cast<const uint64_t*>(base + n * 40);
     for (size_t i = 0; i < n; ++i) {
         const size_t in_scene = uploaded ? uploaded[i] : i;
         const size_t at = kept_indices.empty() ? in_scene : kept_indices[in_scene];
@@ -656,7 +623,6 @@ void Renderer::Impl::unpack_stats(uint32_t count, const uint32_t* uploaded, bool
         out.max_weight[at] = max_weight[i];
         out.pixels[at] = pixels[i];
         out.centre_weight[at] = centre_weight[i];
-        if (removal_error) out.removal_error[at] = double(removal[i]) / 4294967296.0;  // 32.32 fixed point
     }
 }
 

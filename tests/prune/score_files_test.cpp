@@ -35,7 +35,7 @@ TEST_F(ScoreFiles, ScoresRoundTripAsFloat32Vectors) {
     EXPECT_NO_THROW(prune::save_scores(scores, dir / "s.npy", io::WriteMode::overwrite));
 }
 
-TEST_F(ScoreFiles, TotalsWithoutRemovalErrorsRoundTripAsFiveColumns) {
+TEST_F(ScoreFiles, TotalsRoundTripAsFiveColumns) {
     prune::ViewTotals totals(3);
     totals.blend = {1.5, 0.0, 123.25};
     totals.blend_max = {0.5f, 0.0f, 0.99f};
@@ -55,23 +55,6 @@ TEST_F(ScoreFiles, TotalsWithoutRemovalErrorsRoundTripAsFiveColumns) {
     EXPECT_EQ(file.totals->views_visible, totals.views_visible);
 }
 
-TEST_F(ScoreFiles, TotalsWithRemovalErrorsRoundTripAsSixColumns) {
-    prune::ViewTotals totals(2);
-    totals.blend = {1.5, 2.0};
-    totals.pixels = {7, 9};
-    totals.removal_error = {0.25, 1e-6};
-    totals.has_removal_error = true;
-    prune::save_totals(totals, dir / "t.npy");
-    EXPECT_EQ(io::read_npy(dir / "t.npy").shape, (std::vector<size_t>{2, 6}));
-    const prune::ScoreFile file = prune::load_score_file(dir / "t.npy");
-    ASSERT_TRUE(file.totals);
-    EXPECT_TRUE(file.totals->has_removal_error);
-    EXPECT_EQ(file.totals->blend, totals.blend);
-    EXPECT_EQ(file.totals->pixels, totals.pixels);
-    EXPECT_EQ(file.totals->removal_error[0], 0.25);
-    EXPECT_FLOAT_EQ(float(file.totals->removal_error[1]), 1e-6f);
-}
-
 TEST_F(ScoreFiles, OtherShapesAndTypesAreRefusedByName) {
     const float grid[6] = {1, 2, 3, 4, 5, 6};
     io::write_npy(dir / "grid.npy", grid, {2, 3});
@@ -79,7 +62,7 @@ TEST_F(ScoreFiles, OtherShapesAndTypesAreRefusedByName) {
         prune::load_score_file(dir / "grid.npy");
         FAIL();
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("grid.npy: has shape [2, 3]; expected scores [N] or view totals [N, 6]"),
+        EXPECT_NE(std::string(e.what()).find("grid.npy: has shape [2, 3]; expected scores [N] or view totals [N, 5]"),
                   std::string::npos)
             << e.what();
     }

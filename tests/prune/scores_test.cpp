@@ -20,7 +20,7 @@ class Scores : public GpuTest {};
 
 TEST(ScoreNames, RoundTripAndRefuseUnknownNames) {
     const std::vector<std::string> names = prune::score_method_names();
-    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "volume-blend", "random", "removal-error"}));
+    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "volume-blend", "random"}));
     for (const auto& name : names) EXPECT_EQ(prune::to_string(prune::parse_score_method(name)), name);
     try {
         prune::parse_score_method("blend_max");
@@ -57,11 +57,6 @@ TEST(ScoreValues, ViewScoresReadTheTotals) {
     EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::footprint), (std::vector<float>{100.0f, 7.0f}));
     EXPECT_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::blend), std::invalid_argument);
     EXPECT_NO_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::opacity)) << "opacity reads no totals";
-    EXPECT_THROW(prune::score(cloud, totals, ScoreMethod::removal_error), InputError)
-        << "totals gathered without removal errors";
-    totals.removal_error = {0.5, 2.0};
-    totals.has_removal_error = true;
-    EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::removal_error), (std::vector<float>{0.5f, 2.0f}));
 }
 
 TEST(ScoreValues, PercentileInterpolatesAsNumPyDoes) {

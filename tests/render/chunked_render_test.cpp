@@ -225,29 +225,6 @@ TEST_F(ChunkedRender, PerGaussianStatisticsMatchTheWholeFrames) {
     EXPECT_GT(contributing, 500u) << "the comparison should cover Gaussians of every chunk";
 }
 
-// A pixel's removal error needs its finished colour before the splats are walked again; chunks
-// finish it only after the last one, so that is refused by name rather than summed wrongly.
-TEST_F(ChunkedRender, RemovalErrorsNeedTheWholeFrame) {
-    if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit atomics on " << context().info().name;
-    const Camera camera = forward_camera(32, 32, 30.0);
-    Renderer renderer(context());
-    renderer.set_scene(random_scene(35, 2000, 0), SceneStorage{.memory_budget = budget_for_chunk(500, 2000, 0, camera)});
-    RenderSettings settings;
-    settings.gather_stats = true;
-    settings.gather_removal_error = true;
-    try {
-        renderer.render(camera, settings);
-        FAIL() << "expected a GpuError";
-    } catch (const GpuError& e) {
-        EXPECT_NE(std::string(e.what()).find("removal errors need the whole 32x32 frame of 2000 Gaussians"),
-                  std::string::npos)
-            << e.what();
-    }
-    settings.gather_removal_error = false;
-    renderer.render(camera, settings);
-    EXPECT_GE(renderer.last_frame().chunks, 2u) << "the other statistics still chunk";
-}
-
 TEST_F(ChunkedRender, RecordingNeedsTheWholeScene) {
     const Camera camera = forward_camera(32, 32, 30.0);
     Renderer renderer(context());

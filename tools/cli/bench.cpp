@@ -20,7 +20,7 @@ struct BenchArgs {
     std::string scene, cameras, views, tiled, json, charts, save_npy;
     int width = 0, height = 0, reps = 50, warmup = 5, sh_degree = 3;
     std::vector<float> background{0, 0, 0};
-    bool half_sh = false, stats = false, removal_error = false, floor = false, scaling = false, force = false;
+    bool half_sh = false, stats = false, floor = false, scaling = false, force = false;
 };
 
 std::array<int, 2> parse_grid(const std::string& text) {
@@ -72,8 +72,7 @@ int run_bench(const BenchArgs& args) {
     options.warmup = args.warmup;
     options.settings.background = {args.background[0], args.background[1], args.background[2]};
     options.settings.max_sh_degree = args.sh_degree;
-    options.settings.gather_stats = args.stats || args.removal_error;
-    options.settings.gather_removal_error = args.removal_error;
+    options.settings.gather_stats = args.stats;
 
     jobs::BenchReport report;
     report.device = context.info().name;
@@ -81,13 +80,10 @@ int run_bench(const BenchArgs& args) {
     report.scene = args.scene + (args.tiled.empty() ? "" : " tiled " + args.tiled);
     report.gaussians = renderer.scene_size();
     report.half_sh = args.half_sh;
-    report.blend_stats = args.stats || args.removal_error;
-    report.removal_error = args.removal_error;
+    report.blend_stats = args.stats;
     std::printf("device: %s (%s)\nscene: %s, %zu Gaussians%s%s\n", report.device.c_str(), report.driver.c_str(),
                 report.scene.c_str(), size_t(report.gaussians), args.half_sh ? ", half-precision SH" : "",
-                args.removal_error ? ", with the blend statistics and removal errors"
-                : args.stats       ? ", with the pruning scores' blend statistics"
-                                   : "");
+                args.stats ? ", with the pruning scores' blend statistics" : "");
     if (args.floor) {
         report.rates = jobs::measure_device_rates(context);
         std::printf("measured: copy %.0f GB/s (read + write), radix sort %.2f G pairs/s (32-bit keys)\n",
@@ -152,8 +148,6 @@ void register_bench(CLI::App& app, Action& action) {
     cmd->add_flag("--half-sh", args->half_sh, "keep SH in half precision on the device (half the SH memory)");
     cmd->add_flag("--stats", args->stats,
                   "gather the per-Gaussian blend statistics that pruning scores read (the cost of scoring a view)");
-    cmd->add_flag("--removal-error", args->removal_error,
-                  "--stats and the removal-error pass (the cost of scoring a view for --method removal-error)");
     cmd->add_flag("--floor", args->floor, "measure copy bandwidth and sort throughput; print each frame's floor");
     cmd->add_flag("--scaling", args->scaling,
                   "also time the first view at 256^2 .. 3840x2160 and the scene thinned and tiled to 1e4 .. 1.2e7");

@@ -159,7 +159,7 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--sh-degree", args->sh_degree, "write the scene with at most this SH degree")
         ->check(CLI::Range(0, 3));
     command->add_option("--save-scores", args->save_scores, "write the scores as float32 [N] .npy");
-    command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 6] .npy (see prune/score_files.hpp)");
+    command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
     command->add_option("--seed", args->seed, "seed of the random method");

@@ -18,7 +18,6 @@ struct BenchReport {
     uint64_t gaussians = 0;
     bool half_sh = false;
     bool blend_stats = false;  // frames gathered the pruning statistics
-    bool removal_error = false;  // and the removal-error pass (--method removal-error)
     std::optional<DeviceRates> rates;           // with them, every view gets its floor
     BenchmarkResult views;
     std::vector<ScalingPoint> by_resolution, by_scene_size;

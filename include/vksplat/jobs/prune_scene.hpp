@@ -43,7 +43,7 @@ struct PruneOptions {
     // from the unpruned scene at this degree.
     std::optional<int> sh_degree;
     uint64_t seed = 0;                // for the random method
-    // Scores of `method` (float32 [N]) and the view totals (float32 [N, 6] or [N, 5]; only where there are
+    // Scores of `method` (float32 [N]) and the view totals (float32 [N, 5]; only where there are
     // any: rendered, or loaded from a totals file); see prune/score_files.hpp.
     std::optional<std::filesystem::path> save_scores, save_totals;
     // Either kind of file instead of rendering the training views. A scores file is taken as the

@@ -22,17 +22,11 @@ struct ViewTotals {
     std::vector<uint64_t> pixels;          // pixels where alpha reached 1/255, summed over views
     std::vector<double> footprint;         // sum over views of opacity * pi * radius^2 (visible views)
     std::vector<uint32_t> views_visible;   // views in which it survived culling
-    // Sum over views of GaussianStats::removal_error: the squared colour change removing it alone
-    // would make. Gathered only when asked (RenderSettings::gather_removal_error); else all 0 and
-    // has_removal_error is false.
-    std::vector<double> removal_error;
-    bool has_removal_error = false;
     size_t views = 0;                      // how many views were summed
 
     ViewTotals() = default;
     explicit ViewTotals(size_t n)
-        : blend(n, 0.0), blend_max(n, 0.0f), pixels(n, 0), footprint(n, 0.0), views_visible(n, 0),
-          removal_error(n, 0.0) {}
+        : blend(n, 0.0), blend_max(n, 0.0f), pixels(n, 0), footprint(n, 0.0), views_visible(n, 0) {}
     size_t size() const { return blend.size(); }
 };
 
@@ -40,8 +34,7 @@ using Progress = std::function<void(size_t done, size_t total)>;
 
 // Uploads `cloud` (replacing the renderer's scene, so that the statistics are indexed like it),
 // renders each of `views` (indices into `cameras`) with gather_stats and sums the statistics.
-// `settings` gives the background and SH degree, and whether to gather removal errors as well
-// (gather_removal_error: one more blend pass per view); gather_stats is set here. Throws InputError for a
+// `settings` gives the background and SH degree; gather_stats is set here. Throws InputError for a
 // view index out of range.
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                       const std::vector<size_t>& views, const RenderSettings& settings,

@@ -2,10 +2,8 @@
 // Scores and view totals as .npy files, so that a selection can be redone without rendering again
 // and Python users can inspect them with one call to numpy.load.
 //   scores: float32 [N], one method's scores (save_scores).
-//   totals: float32 [N, 6], one row per Gaussian with the columns blend, blend_max, pixels,
-//           footprint, views_visible, removal_error (save_totals; [N, 5] without the last where it
-//           was not gathered, which is also how older files load); every method can be scored
-//           from them (removal-error only from [N, 6]), and the
+//   totals: float32 [N, 5], one row per Gaussian with the columns blend, blend_max, pixels,
+//           footprint, views_visible (save_totals); every method can be scored from them, and the
 //           lossless pass reads their pixel counts. float32 keeps the counts exact up to 2^24 and,
 //           what the lossless pass needs, zero and non-zero apart. ViewTotals::views is not stored.
 #include <filesystem>

@@ -18,9 +18,6 @@ enum class ScoreMethod {
     blend_max,     // max over pixels and views of alpha * T
     volume_blend,  // blend * (V / V90)^0.1, V the product of the three scales (LightGaussian)
     random,        // seeded uniform in [0, 1): the baseline the others must beat
-    // sum over every pixel of every view of |C - C'|^2, C' the pixel without this Gaussian alone:
-    // what its removal costs the picture, low for a splat the same colour as what lies behind it
-    removal_error,
 };
 
 // "opacity", "footprint", "blend", "blend-max", "volume-blend", "random".
@@ -31,8 +28,6 @@ std::vector<std::string> score_method_names();
 ScoreMethod parse_score_method(std::string_view name);
 // Whether the method reads the view totals (opacity and random need no rendering).
 bool uses_views(ScoreMethod method);
-// Whether the method needs ViewTotals::removal_error (RenderSettings::gather_removal_error).
-bool uses_removal_error(ScoreMethod method);
 
 // sigmoid(logit) per Gaussian.
 std::vector<float> opacities(const GaussianCloud& cloud);
@@ -40,8 +35,7 @@ std::vector<float> opacities(const GaussianCloud& cloud);
 // The scores of `method` for each Gaussian of `cloud`. `totals` must be the cloud's (same size)
 // for the methods that use views, and is ignored by the others; `seed` is read only by random,
 // whose scores are the same for a seed on every platform. Expects a sanitised cloud (finite scales).
-// Throws std::invalid_argument when the totals do not match the cloud, InputError when
-// removal_error is asked of totals gathered without removal errors.
+// Throws std::invalid_argument when the totals do not match the cloud.
 std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, ScoreMethod method,
                          uint64_t seed = 0);
 
