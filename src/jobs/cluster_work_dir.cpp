@@ -222,10 +222,16 @@ cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector
     return scores;
 }
 
-ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options, const fs::path& out,
-                               const ClusterStageIo& io) {
-    refuse_existing(out, io);
-    const std::vector<int32_t> cluster_of = load_clusters(cloud.size(), io);
+namespace {
+
+// What stage 6 saved, checked against stage 5's clusters.
+struct SavedClusterScores {
+    std::vector<int32_t> cluster_of;
+    cluster::ClusterScores scores;
+};
+
+SavedClusterScores load_cluster_scores(size_t gaussians, const ClusterStageIo& io) {
+    SavedClusterScores saved{load_clusters(gaussians, io), {}};
     require(scores_file(io), "score");
     const io::NpyArray table = io::read_npy(scores_file(io));
     const auto values = table.values<float>();
@@ -233,34 +239,67 @@ ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions&
     if (table.shape.size() != 2 || (table.shape[1] != kScoreColumns && table.shape[1] != 6))
         throw InputError(scores_file(io).string(), "is not a [clusters, " + std::to_string(kScoreColumns) + "] table");
     const size_t columns = table.shape[1];
-    cluster::ClusterScores scores;
+    cluster::ClusterScores& scores = saved.scores;
     scores.score.resize(table.shape[0]);
     for (size_t c = 0; c < scores.score.size(); ++c) scores.score[c] = values[c * columns + 5];
     if (columns == kScoreColumns) {
         scores.contribution_raw.resize(table.shape[0]);
         for (size_t c = 0; c < scores.size(); ++c) scores.contribution_raw[c] = values[c * columns + 6];
     }
-    for (int32_t id : cluster_of)
+    for (int32_t id : saved.cluster_of)
         if (id < 0 || size_t(id) >= scores.size())
             throw InputError(clusters_file(io).string(), "names cluster " + std::to_string(id) + ", but " +
                                                              scores_file(io).string() + " scores " +
                                                              std::to_string(scores.size()) + " (re-run score)");
-    if (options.selection.max_contribution_loss < 1 && scores.contribution_raw.empty())
-        throw InputError(scores_file(io).string(), "has no contribution column: run `vksplat cluster score` again, "
-                                                   "or give --max-contribution-loss 1");
-    const cluster::ClusterSelection selection = cluster::select_clusters(scores, cluster_of, options.selection);
-    for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
-    const GaussianCloud pruned = cloud.subset(selection.keep);
+    return saved;
+}
+
+ClusterPruneResult write_pruned(const GaussianCloud& cloud, const std::vector<uint8_t>& keep, size_t clusters,
+                                const std::vector<int32_t>& cluster_of, const fs::path& out, const ClusterStageIo& io) {
+    const GaussianCloud pruned = cloud.subset(keep);
     io::write_ply(pruned, out, io.mode);
     ClusterPruneResult result;
     result.count_before = cloud.size();
     result.count_after = pruned.size();
     result.bytes_before = cloud.ply_bytes();
     result.bytes_after = pruned.ply_bytes();
-    result.clusters = scores.size();
-    result.clusters_dropped = selection.clusters_dropped;
+    result.clusters = clusters;
+    std::vector<uint8_t> cluster_kept(clusters, 0);
+    for (size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) cluster_kept[size_t(cluster_of[i])] = 1;
+    result.clusters_dropped = clusters - size_t(std::count(cluster_kept.begin(), cluster_kept.end(), 1));
+    return result;
+}
+
+}  // namespace
+
+ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options, const fs::path& out,
+                               const ClusterStageIo& io) {
+    refuse_existing(out, io);
+    const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
+    if (options.selection.max_contribution_loss < 1 && saved.scores.contribution_raw.empty())
+        throw InputError(scores_file(io).string(), "has no contribution column: run `vksplat cluster score` again, "
+                                                   "or give --max-contribution-loss 1");
+    const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
+    for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
+    ClusterPruneResult result = write_pruned(cloud, selection.keep, saved.scores.size(), saved.cluster_of, out, io);
     result.contribution_dropped = selection.contribution_dropped;
     result.stopped_by_contribution = selection.stopped_by_contribution;
+    return result;
+}
+
+ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud& cloud, const prune::TestViews& views,
+                                         const prune::QualityBudget& budget, const RenderSettings& settings,
+                                         const fs::path& out, const ClusterStageIo& io,
+                                         const std::function<void(const prune::BudgetProbe&)>& on_probe) {
+    refuse_existing(out, io);
+    const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
+    const std::vector<float> ranked_by = cluster::gaussian_scores(saved.scores, saved.cluster_of);
+    const prune::Ranking ranking(ranked_by, prune::keep_all(cloud.size()));
+    // Every Gaussian is a candidate, so the whole scene (a drop of 0) always meets the budget.
+    prune::BudgetResult fitted = prune::fit_quality_budget(renderer, cloud, ranking, views, budget, settings, on_probe);
+    ClusterPruneResult result = write_pruned(cloud, fitted.keep, saved.scores.size(), saved.cluster_of, out, io);
+    result.budget = std::move(fitted);
     return result;
 }
 

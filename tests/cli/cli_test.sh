@@ -124,6 +124,10 @@ expect cluster-original-method 0 "percentile" -- "$vksplat" cluster score "$work
 expect cluster-original-prune 0 "wrote $work/original_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1 \
   -o "$work/original_clusters.ply"
+expect cluster-quality-budget 0 "quality budget 0.500 dB: kept" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --test-views 0-2 -o "$work/budget_clusters.ply"
+expect cluster-budget-or-ratio any-failure "--max-psnr-drop" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --prune-ratio 0.5 -o "$work/bad.ply"
 expect cluster-help-says-the-original 0 "--kappa 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
 expect cluster-bad-ratio-of any-failure "--ratio-of" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --ratio-of splats -o "$work/bad.ply"

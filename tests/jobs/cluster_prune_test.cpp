@@ -139,6 +139,41 @@ TEST_F(ClusterPrune, StagesThroughAWorkFolderAndRerunFromSavedOutputs) {
     }
 }
 
+// The quality budget holds on the test views whatever the cluster scores are worth: the model it
+// writes is measured again here, and a looser budget keeps fewer Gaussians.
+TEST_F(ClusterPrune, AQualityBudgetHoldsOnTheTestViews) {
+    Renderer renderer(context());
+    jobs::ClusterStageIo io{dir, io::WriteMode::refuse_existing, log, {}};
+    jobs::regions_stage(renderer, cloud, cameras, options, std::nullopt, io);
+    jobs::project_stage(renderer, context(), cloud, cameras, options, io);
+    jobs::build_stage(cloud, options, io);
+    jobs::score_stage(cloud, cameras, options, io);
+    const std::vector<Camera> test(cameras.begin(), cameras.begin() + 3);
+    RenderSettings settings;
+    const prune::TestViews targets = prune::render_targets(renderer, cloud, test, settings);
+
+    std::vector<size_t> kept;
+    for (double budget : {0.05, 1.0}) {
+        const fs::path out = dir / ("budget_" + std::to_string(budget) + ".ply");
+        size_t probes = 0;
+        const auto result = jobs::prune_stage_to_budget(renderer, cloud, targets, {.max_psnr_drop = budget}, settings,
+                                                        out, io, [&](const prune::BudgetProbe&) { ++probes; });
+        ASSERT_TRUE(result.budget);
+        EXPECT_TRUE(result.budget->met);
+        EXPECT_EQ(probes, result.budget->probes.size());
+        EXPECT_LE(result.budget->drop, budget);
+        const GaussianCloud written = io::read_ply(out);
+        EXPECT_EQ(written.size(), result.count_after);
+        EXPECT_EQ(result.budget->kept, result.count_after);
+        // Measured again from the file: the same drop (against renders of the unpruned scene).
+        const prune::Quality quality = prune::measure_quality(renderer, written, targets, settings, false);
+        EXPECT_NEAR(quality.mean_psnr, result.budget->psnr, 1e-6) << budget;
+        kept.push_back(result.count_after);
+    }
+    EXPECT_LT(kept[1], kept[0]) << "a looser budget drops more";
+    EXPECT_LT(kept[1], cloud.size());
+}
+
 TEST_F(ClusterPrune, NoiseRegionMapsWarnAndStillGiveAScene) {
     Renderer renderer(context());
     const fs::path noise = dir / "noise";

@@ -24,7 +24,7 @@ struct ClusterArgs {
     std::string scene, cameras, work, out, import_dir, images, test_views;
     std::string render_views, keep_views, occlusion = "depth", delta = "0.01", ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
-    std::optional<double> score_threshold;
+    std::optional<double> score_threshold, max_psnr_drop;
     bool force = false;
     jobs::ClusterOptions options;
 };
@@ -92,17 +92,24 @@ void add_score(CLI::App& c, ClusterArgs& a) {
 void add_prune(CLI::App& c, ClusterArgs& a) {
     auto* threshold = c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this");
     auto& rule = a.options.selection;
-    c.add_option("--prune-ratio", rule.ratio, "else drop this fraction (see --ratio-of), lowest G* first")
+    auto* ratio = c.add_option("--prune-ratio", rule.ratio, "else drop this fraction (see --ratio-of), lowest G* first")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str()
         ->excludes(threshold);
     c.add_option("--ratio-of", a.ratio_of, "what --prune-ratio counts: gaussians, or clusters (the original rule)")
         ->check(CLI::IsMember({"gaussians", "clusters"}))
         ->capture_default_str();
-    c.add_option("--max-contribution-loss", rule.max_contribution_loss,
-                 "stop before the dropped clusters paint more than this share of the picture (1: no limit)")
-        ->check(CLI::Range(0.0, 1.0))
-        ->capture_default_str();
+    auto* contribution = c.add_option("--max-contribution-loss", rule.max_contribution_loss,
+                                      "stop before the dropped clusters paint more than this share of the picture (1: no limit)")
+                             ->check(CLI::Range(0.0, 1.0))
+                             ->capture_default_str();
+    c.add_option("--max-psnr-drop", a.max_psnr_drop,
+                 "instead: the fewest Gaussians, clusters whole from the best G* down, whose mean PSNR on the test "
+                 "views drops at most D dB (against --images, else the unpruned render)")
+        ->check(CLI::NonNegativeNumber)
+        ->excludes(threshold)
+        ->excludes(ratio)
+        ->excludes(contribution);
     c.add_option("-o,--out", a.out, "pruned scene (.ply)")->required();
     c.add_option("--images", a.images, "photos: measure the test views against them too")->check(CLI::ExistingDirectory);
     c.add_option("--test-views", a.test_views, "views to measure on (default: the first 13)");
@@ -147,7 +154,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
 
     std::unique_ptr<gpu::Context> context;
     std::unique_ptr<Renderer> renderer;
-    if (stages & (kRegions | kProject) || (stages & kPrune && !args.images.empty())) {
+    if (stages & (kRegions | kProject) || (stages & kPrune && (!args.images.empty() || args.max_psnr_drop))) {
         context = std::make_unique<gpu::Context>(args.gpu.context_options());
         renderer = std::make_unique<Renderer>(*context);
     }
@@ -175,8 +182,28 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     if (stages & kBuild) timed("build", [&] { jobs::build_stage(cloud, options, io); });
     if (stages & kScore) timed("score", [&] { jobs::score_stage(cloud, cameras, options, io); });
     if (stages & kPrune) {
+        const auto views = args.test_views.empty() ? jobs::default_test_views(cameras.size())
+                                                   : jobs::parse_view_list(args.test_views, cameras.size());
+        std::vector<Camera> test;
+        for (size_t v : views) test.push_back(cameras[v]);
         jobs::ClusterPruneResult result;
-        timed("prune", [&] { result = jobs::prune_stage(cloud, options, args.out, io); });
+        timed("prune", [&] {
+            if (!args.max_psnr_drop) {
+                result = jobs::prune_stage(cloud, options, args.out, io);
+                return;
+            }
+            const prune::TestViews targets =
+                args.images.empty() ? prune::render_targets(*renderer, cloud, test, options.settings)
+                                    : prune::photo_targets(test, args.images, options.settings.background);
+            const prune::QualityBudget budget{.max_psnr_drop = *args.max_psnr_drop};
+            result = jobs::prune_stage_to_budget(*renderer, cloud, targets, budget, options.settings, args.out, io,
+                                                 [](const prune::BudgetProbe& p) {
+                                                     std::printf("  probe: keep %zu, PSNR %.3f dB, drop %.3f dB%s (%.1f s)\n",
+                                                                 p.kept, p.psnr, p.drop, p.meets ? "" : " - over",
+                                                                 p.seconds);
+                                                     std::fflush(stdout);
+                                                 });
+        });
         std::printf("clusters: %zu, dropped %zu, painting %.2f%% of the picture%s\n"
                     "Gaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n",
                     result.clusters, result.clusters_dropped, 100.0 * result.contribution_dropped,
@@ -185,11 +212,10 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                     result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0,
                     result.bytes_before, result.bytes_after, args.out.c_str());
         if (result.count_after == 0) std::printf("warning: the pruned scene is empty\n");
+        if (result.budget)
+            std::printf("quality budget %.3f dB: kept %zu, drop %.3f dB (%zu probes)\n", *args.max_psnr_drop,
+                        result.budget->kept, result.budget->drop, result.budget->probes.size());
         if (!args.images.empty()) {
-            const auto views = args.test_views.empty() ? jobs::default_test_views(cameras.size())
-                                                       : jobs::parse_view_list(args.test_views, cameras.size());
-            std::vector<Camera> test;
-            for (size_t v : views) test.push_back(cameras[v]);
             const GaussianCloud pruned = io::read_ply(args.out);
             const auto q = jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings);
             std::printf("test views (%zu), subject region %.1f%% of the pixels:\n", test.size(), 100 * q.subject_fraction);

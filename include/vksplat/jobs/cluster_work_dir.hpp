@@ -15,6 +15,7 @@
 
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/cluster_prune.hpp"
+#include "vksplat/prune/quality_budget.hpp"
 
 namespace vksplat::jobs {
 
@@ -45,9 +46,19 @@ struct ClusterPruneResult {
     size_t clusters = 0, clusters_dropped = 0;
     double contribution_dropped = 0;       // share of the scene's total contribution
     bool stopped_by_contribution = false;  // the contribution limit ended the drop before the ratio
+    std::optional<prune::BudgetResult> budget;  // prune_stage_to_budget's probes and what it chose
 };
 // Stage 7: writes the pruned scene to `out`.
 ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options,
                                const std::filesystem::path& out, const ClusterStageIo& io);
+// Stage 7 under a quality budget instead of options.selection: the fewest Gaussians, clusters taken
+// whole from the best G* down (the last one partly, lower indices first), whose mean PSNR on
+// `views` drops at most budget.max_psnr_drop (a bisection, prune/quality_budget.hpp), so the drop
+// is guaranteed on those views whatever the cluster scores are worth. Writes it to `out`.
+ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud& cloud,
+                                         const prune::TestViews& views, const prune::QualityBudget& budget,
+                                         const RenderSettings& settings, const std::filesystem::path& out,
+                                         const ClusterStageIo& io,
+                                         const std::function<void(const prune::BudgetProbe&)>& on_probe = {});
 
 }  // namespace vksplat::jobs
