@@ -100,6 +100,12 @@ expect sweep 0 "wrote $work/sweep/report.html" -- "$vksplat" sweep "$work/demo/d
   --methods blend,random --fractions 0,0.5 --timing-reps 0 --no-scoring-cost
 [ "$(wc -l <"$work/sweep/sweep.csv")" -eq 5 ] && [ -f "$work/sweep/charts/psnr_vs_fraction.svg" ] &&
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: sweep outputs missing"; }
+expect sweep-cluster-options 0 "cluster      drop 0.5" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep_cluster" --methods cluster \
+  --fractions 0.5 --timing-reps 0 --no-scoring-cost --max-views 4 --delta-dist auto --seg-k 150 --kappa 0 --gamma 1
+expect sweep-cluster-bad-delta 2 "--delta-dist x: expected a distance or auto" -- "$vksplat" sweep \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep_bad" \
+  --methods cluster --delta-dist x
 expect sweep-refuses-overwrite 2 "sweep.csv: already exists" -- "$vksplat" sweep "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
 # Cluster pruning: all stages, a re-run of one stage from the saved outputs, and the refusals.

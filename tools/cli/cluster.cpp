@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "cluster_options.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "vksplat/error.hpp"
@@ -22,14 +23,12 @@ namespace {
 struct ClusterArgs {
     GpuOptions gpu;
     std::string scene, cameras, work, out, import_dir, images, test_views;
-    std::string render_views, keep_views, occlusion = "depth", delta = "0.01", ratio_of = "gaussians";
+    std::string ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
     bool force = false;
-    jobs::ClusterOptions options;
+    ClusterStageArgs stage;  // the options of stages 1-6
 };
-
-enum Stage : unsigned { kRegions = 1, kProject = 2, kBuild = 4, kScore = 8, kPrune = 16 };
 
 void add_common(CLI::App& c, ClusterArgs& a) {
     c.add_option("scene", a.scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
@@ -41,57 +40,9 @@ void add_common(CLI::App& c, ClusterArgs& a) {
     c.add_flag("--force", a.force, "overwrite existing outputs");
 }
 
-void add_regions(CLI::App& c, ClusterArgs& a) {
-    auto& o = a.options;
-    c.add_option("--max-views", o.max_views, "render at most this many training views, evenly spread");
-    c.add_option("--render-views", a.render_views, "views to render, e.g. 13-99 (default: the training views)");
-    c.add_option("--resolution-scale", o.resolution_scale, "render and segment at this fraction of the camera size");
-    c.add_option("--seg-sigma", o.segmentation.sigma, "graph segmentation: pre-smoothing in pixels");
-    c.add_option("--seg-k", o.segmentation.k, "graph segmentation: scale (larger: larger regions)");
-    c.add_option("--seg-min-size", o.segmentation.min_size_fraction, "smallest region, as a fraction of the image");
-    c.add_option("--min-alpha", o.segmentation.min_alpha, "pixels with rendered alpha below this carry no region");
-    c.add_option("--import", a.import_dir,
-                 "use region maps made elsewhere: view_NNNN or <image stem> .npy (int32 [H,W] or uint8 masks "
-                 "[K,H,W]) or .png (16-bit labels, 0 = none)")
-        ->check(CLI::ExistingDirectory);
-}
-
-void add_project(CLI::App& c, ClusterArgs& a) {
-    auto& o = a.options;
-    c.add_option("--views", a.keep_views, "use exactly these views instead of the view filter's choice");
-    c.add_option("--max-largest-fraction", o.filter.max_largest_fraction, "filter: largest region's share at most");
-    c.add_option("--max-regions", o.filter.max_regions, "filter: regions per view at most");
-    c.add_option("--min-edge-alignment", o.filter.min_edge_alignment, "filter: border/image gradient ratio at least");
-    c.add_option("--min-labelled-fraction", o.filter.min_labelled_fraction, "filter: share of pixels in a region");
-    c.add_option("--occlusion", a.occlusion, "occlusion rule: depth (nearest centre) or blend (alpha*T at centre)")
-        ->check(CLI::IsMember({"depth", "blend"}));
-    c.add_option("--min-weight", o.projection.min_weight, "blend rule: smallest alpha*T at the centre that counts");
-}
-
-void add_build(CLI::App& c, ClusterArgs& a) {
-    auto& o = a.options;
-    c.add_option("--delta-dist", a.delta, "neighbour radius in scene units, or auto");
-    c.add_option("--max-neighbours", o.max_neighbours, "nearest neighbours per Gaussian within the radius");
-    c.add_option("--semantic-tol", o.merge.semantic_tol, "largest share of common views whose regions may differ");
-    c.add_option("--min-common-views", o.merge.min_common_views, "views that must see both of a pair");
-}
-
-void add_score(CLI::App& c, ClusterArgs& a) {
-    auto& w = a.options.weights;
-    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G* (the issue's: 0.1)")->capture_default_str();
-    c.add_option("--beta", w.beta, "weight of the depth variance in G* (the issue's: 0.1)")->capture_default_str();
-    c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G* (the issue's: 1)")
-        ->capture_default_str();
-    c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR")
-        ->capture_default_str();
-    c.add_option("--kappa", w.kappa,
-                 "weight of the contribution (largest share of the picture a member paints) in G* (the issue's: 0)")
-        ->capture_default_str();
-}
-
 void add_prune(CLI::App& c, ClusterArgs& a) {
     auto* threshold = c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this");
-    auto& rule = a.options.selection;
+    auto& rule = a.stage.options.selection;
     auto* ratio = c.add_option("--prune-ratio", rule.ratio, "else drop this fraction (see --ratio-of), lowest G* first")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str()
@@ -133,19 +84,9 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-    auto& options = args.options;
-    options.settings.background = {args.background[0], args.background[1], args.background[2]};
-    if (!args.render_views.empty()) options.views = jobs::parse_view_list(args.render_views, cameras.size());
-    if (!args.keep_views.empty()) options.keep_views = jobs::parse_view_list(args.keep_views, cameras.size());
-    options.projection.rule = cluster::parse_occlusion_rule(args.occlusion);
-    if (args.delta == "auto")
-        options.delta.reset();
-    else
-        try {
-            options.delta = std::stod(args.delta);
-        } catch (const std::exception&) {
-            throw InputError("--delta-dist " + args.delta, "expected a distance or auto");
-        }
+    args.stage.options.settings.background = {args.background[0], args.background[1], args.background[2]};
+    resolve_cluster_stage_args(args.stage, cameras.size());
+    auto& options = args.stage.options;
     options.selection.threshold = args.score_threshold;
     options.selection.ratio_of = cluster::parse_ratio_of(args.ratio_of);
     jobs::ClusterStageIo io{args.work, args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing,
@@ -233,10 +174,12 @@ CLI::App* add_stage(CLI::App& cluster, Action& action, const char* name, const c
     command->footer(std::string("Example:\n  ") + example);
     auto args = std::make_shared<ClusterArgs>();
     add_common(*command, *args);
-    if (stages & kRegions) add_regions(*command, *args);
-    if (stages & kProject) add_project(*command, *args);
-    if (stages & kBuild) add_build(*command, *args);
-    if (stages & kScore) add_score(*command, *args);
+    add_cluster_stage_options(*command, args->stage, stages);
+    if (stages & kRegions)
+        command->add_option("--import", args->import_dir,
+                          "use region maps made elsewhere: view_NNNN or <image stem> .npy (int32 [H,W] or uint8 masks "
+                          "[K,H,W]) or .png (16-bit labels, 0 = none)")
+            ->check(CLI::ExistingDirectory);
     if (stages & kPrune) add_prune(*command, *args);
     if (stages & (kRegions | kProject) || stages & kPrune) add_gpu_options(*command, args->gpu);
     command->callback([&action, args, stages] { action = [args, stages] { return run_stages(*args, stages); }; });

@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "cluster_options.hpp"
 #include "commands.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
@@ -24,6 +25,7 @@ struct SweepArgs {
     std::vector<float> background{0, 0, 0};
     uint64_t seed = 0;
     bool force = false;
+    ClusterStageArgs cluster;  // the cluster method's stages 1-6
 };
 
 void print_row(const jobs::SweepRow& row) {
@@ -53,6 +55,11 @@ int run_sweep(const SweepArgs& args) {
             options.cluster = true;
         else
             options.methods.push_back(prune::parse_score_method(name));
+    }
+    if (options.cluster) {
+        ClusterStageArgs cluster = args.cluster;
+        resolve_cluster_stage_args(cluster, cameras.size());
+        options.cluster_options = cluster.options;
     }
     options.fractions = args.fractions;
     if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
@@ -108,7 +115,8 @@ void register_sweep(CLI::App& app, Action& action) {
         "Example:\n  vksplat sweep lego/point_cloud.ply --cameras lego/cameras.json --images lego/images \\\n"
         "      --background 1,1,1 --out sweep_lego\n"
         "A quick run: --methods blend,random --fractions 0,0.5,0.9 --max-train-views 10 --timing-reps 0\n"
-        "The cluster method renders and segments up to 50 of the training views first (see vksplat cluster).");
+        "The cluster method renders and segments up to 50 of the training views first (see vksplat cluster);\n"
+        "the options of its stages are those of vksplat cluster, with the same defaults.");
     auto args = std::make_shared<SweepArgs>();
     command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
@@ -152,6 +160,9 @@ void register_sweep(CLI::App& app, Action& action) {
         ->expected(3);
     command->add_option("--seed", args->seed, "seed of the random method");
     command->add_flag("--force", args->force, "overwrite the results of an earlier sweep in the folder");
+    auto* cluster = command->add_option_group("cluster method", "with --methods ...,cluster: its stages' options "
+                                                                 "(vksplat cluster; the same defaults)");
+    add_cluster_stage_options(*cluster, args->cluster, kRegions | kProject | kBuild | kScore);
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_sweep(*args); }; });
 }
