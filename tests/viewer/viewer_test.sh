@@ -24,7 +24,8 @@ cat >"$work/cameras.json" <<'JSON'
 JSON
 
 # Xvfb picks a free display itself and writes its number to fd 3. It is started again if it does not
-# come up answering (another X server may take the same number at the same moment).
+# come up answering (another X server may take the same number at the same moment), or if the
+# viewer then cannot connect to it (seen once in CI under full load, after xdotool had answered).
 xvfb_pid=
 viewer_pid=
 cleanup() {
@@ -39,15 +40,20 @@ for attempt in 1 2 3; do
   for _ in $(seq 100); do [ -s "$work/display" ] && break; sleep 0.1; done
   export DISPLAY=:$(cat "$work/display" 2>/dev/null)
   sleep 0.5
-  kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1 && break
-  echo "Xvfb attempt $attempt did not come up on '$DISPLAY'"
+  if kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1; then
+    "$vksplat" view "$work/demo/demo.ply" --cameras "$work/cameras.json" --size 320x240 >"$work/view.log" 2>&1 &
+    viewer_pid=$!
+    sleep 1
+    kill -0 "$viewer_pid" 2>/dev/null || ! grep -q "cannot open a window" "$work/view.log" && break
+    echo "attempt $attempt: the viewer could not open a window on '$DISPLAY': $(cat "$work/view.log")"
+    viewer_pid=
+  else
+    echo "Xvfb attempt $attempt did not come up on '$DISPLAY'"
+  fi
   kill "$xvfb_pid" 2>/dev/null
   xvfb_pid=
 done
 [ -n "$xvfb_pid" ] || { echo "FAILED: no virtual display"; cat "$work/xvfb.log"; exit 1; }
-
-"$vksplat" view "$work/demo/demo.ply" --cameras "$work/cameras.json" --size 320x240 >"$work/view.log" 2>&1 &
-viewer_pid=$!
 
 # wait_title PATTERN: waits (up to 120 s on a busy CPU) until the title matches; the viewer sets
 # the title after a frame is on screen, so a match means the frame is there.
