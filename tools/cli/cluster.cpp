@@ -145,11 +145,12 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                                                      std::fflush(stdout);
                                                  });
         });
-        std::printf("clusters: %zu, dropped %zu, painting %.2f%% of the picture%s\n"
-                    "Gaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n",
-                    result.clusters, result.clusters_dropped, 100.0 * result.contribution_dropped,
-                    result.stopped_by_contribution ? " (stopped by --max-contribution-loss before the ratio)" : "",
-                    result.count_before, result.count_after,
+        std::printf("clusters: %zu, dropped %zu", result.clusters, result.clusters_dropped);
+        // The budget measures its drop on the test views (printed below), not in painted share.
+        if (!result.budget)
+            std::printf(", painting %.2f%% of the picture%s", 100.0 * result.contribution_dropped,
+                        result.stopped_by_contribution ? " (stopped by --max-contribution-loss before the ratio)" : "");
+        std::printf("\nGaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n", result.count_before, result.count_after,
                     result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0,
                     result.bytes_before, result.bytes_after, args.out.c_str());
         if (result.count_after == 0) std::printf("warning: the pruned scene is empty\n");
