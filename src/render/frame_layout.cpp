@@ -5,6 +5,17 @@
 #include "vksplat/constants.hpp"
 
 namespace vksplat::render {
+namespace {
+
+uint32_t tiles_across(uint32_t width) { return (width + constants::kTileWidth - 1) / constants::kTileWidth; }
+uint32_t tiles_down(uint32_t height) { return (height + constants::kTileHeight - 1) / constants::kTileHeight; }
+
+}  // namespace
+
+ImageExtent image_extent(const Camera& camera) {
+    const auto width = static_cast<uint32_t>(camera.width), height = static_cast<uint32_t>(camera.height);
+    return {width * height, tiles_across(width) * tiles_down(height)};
+}
 
 CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
                                 int scene_sh_degree, bool scene_half_sh, uint32_t entry_capacity) {
@@ -36,8 +47,8 @@ CameraParams make_camera_params(const Camera& camera, const RenderSettings& sett
 
     p.size[0] = static_cast<uint32_t>(camera.width);
     p.size[1] = static_cast<uint32_t>(camera.height);
-    p.size[2] = (p.size[0] + constants::kTileWidth - 1) / constants::kTileWidth;
-    p.size[3] = (p.size[1] + constants::kTileHeight - 1) / constants::kTileHeight;
+    p.size[2] = tiles_across(p.size[0]);
+    p.size[3] = tiles_down(p.size[1]);
     for (int i = 0; i < 3; ++i) p.background[i] = settings.background[i];
 
     p.gaussian_count = gaussian_count;

@@ -37,6 +37,13 @@ enum Counter : uint32_t {
 };
 
 
+// What an image sizes the per-image frame buffers by: its pixels and its 16x16 tiles (the same
+// tiling as CameraParams::size[2..3]).
+struct ImageExtent {
+    uint32_t pixels = 0, tiles = 0;
+};
+ImageExtent image_extent(const Camera& camera);
+
 CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
                                 int scene_sh_degree, bool scene_half_sh, uint32_t entry_capacity);
 

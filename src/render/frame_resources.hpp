@@ -28,7 +28,9 @@ struct FrameResources {
     gpu::Buffer tile_keys, tile_values;
     std::unique_ptr<gpu::RadixSort::Scratch> sort_scratch;  // serves the depth and the tile sort
 
-    // Per-Gaussian statistics (allocated on the first frame that asks for them).
+    // Per-Gaussian statistics (allocated on the first frame that asks for them): weight 8, max
+    // weight 4, pixels 4 and centre weight 4 bytes.
+    static constexpr uint64_t kStatsBytesPerGaussian = 20;
     uint32_t stats_capacity = 0;
     gpu::Buffer stat_weight, stat_max_weight, stat_pixels, stat_centre_weight;
     gpu::Buffer stats_readback;  // host-visible: means_depth, weight, max weight, pixels, centre weight
@@ -39,7 +41,9 @@ struct FrameResources {
     gpu::Buffer readback;  // host-visible: color_alpha, depth, contributors, then the counters
 
     // Per-pixel state carried from one depth-ordered chunk to the next (frames larger than the
-    // memory budget; allocated on the first such frame).
+    // memory budget; allocated on the first such frame): colour and transmittance 16, depth sum
+    // and contributor count 8 bytes.
+    static constexpr uint64_t kCarryBytesPerPixel = 24;
     uint32_t carry_capacity = 0;
     gpu::Buffer carried_color, carried_depth_count;
 

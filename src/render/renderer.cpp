@@ -107,6 +107,12 @@ struct Renderer::Impl {
     void record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y, bool gather_stats,
                            const uint32_t* carry_flags = nullptr);
     void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
+    // The image readback: colour and alpha (16 bytes a pixel), depth (4), contributors (4), then
+    // the counters; without the image (read_back false) the counters alone, at offset 0.
+    static VkDeviceSize readback_counters_offset(uint32_t pixels, bool read_back) {
+        return read_back ? uint64_t(pixels) * 24 : 0;
+    }
+    void copy_image_to_readback(gpu::CommandStream& stream, uint32_t pixels);
     void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                      const RenderTarget& target);
     const gpu::ComputePipeline& pack_pipeline();
@@ -267,14 +273,17 @@ void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_
     record_passes(stream, params, scene, gather_stats);
     if (gather_stats) copy_stats(stream, n);
 
-    const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
-    if (read_back) {
-        stream.copy(f.color_alpha, f.readback, uint64_t(pixels) * 16, 0, 0);
-        stream.copy(f.depth, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
-        stream.copy(f.contributors, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
-    }
+    const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
+    if (read_back) copy_image_to_readback(stream, pixels);
     stream.copy(f.counters, f.readback, render::kCounterCount * sizeof(uint32_t), 0, counters_offset);
     stream.submit_and_wait();
+}
+
+void Renderer::Impl::copy_image_to_readback(gpu::CommandStream& stream, uint32_t pixels) {
+    auto& f = frame;
+    stream.copy(f.color_alpha, f.readback, uint64_t(pixels) * 16, 0, 0);
+    stream.copy(f.depth, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
+    stream.copy(f.contributors, f.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
 }
 
 uint64_t Renderer::Impl::scene_device_bytes() const {
@@ -289,7 +298,8 @@ uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entr
     return render::FrameResources::bytes_for(context, std::max(gaussians, f.gaussian_capacity),
                                              std::max(entries, f.entry_capacity), std::max(pixels, f.pixel_capacity),
                                              std::max(tiles, f.tile_capacity), false) +
-           uint64_t(carried) * 24 + stats_count * 20 + f.packed.size();
+           uint64_t(carried) * render::FrameResources::kCarryBytesPerPixel +
+           stats_count * render::FrameResources::kStatsBytesPerGaussian + f.packed.size();
 }
 
 const gpu::ComputePipeline& Renderer::Impl::carry_pipeline(bool gather_stats) {
@@ -322,8 +332,7 @@ void Renderer::Impl::add_stage_times() {
 
 void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
     camera.validate();
-    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
-    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const auto [pixels, tiles] = render::image_extent(camera);
     stats = {};
     stats.gaussians = scene.count;
     if (scene.params) {
@@ -341,8 +350,7 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
 }
 
 bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& settings, bool read_back) {
-    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
-    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const auto [pixels, tiles] = render::image_extent(camera);
     frame.ensure_gaussians(scene.count);
     frame.ensure_image(pixels, tiles);
     if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
@@ -357,7 +365,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
         record_frame(params, read_back, settings.gather_stats);
         uint32_t counters[render::kCounterCount];
-        const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
+        const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
         stats.visible = counters[render::kCounterVisible];
         stats.tile_entries = counters[render::kCounterEntriesNeeded];
@@ -388,8 +396,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
 }
 
 void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& settings, bool read_back) {
-    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
-    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const auto [pixels, tiles] = render::image_extent(camera);
     const int degree = scene.sh_degree;
     const bool half = scene.half_sh;
     const bool with_stats = settings.gather_stats;
@@ -399,7 +406,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const auto need = [&](uint32_t g, uint32_t e) {
         return render::GpuScene::bytes_for(g, degree, half) +
                render::FrameResources::bytes_for(context, g, e, pixels, tiles, true) +
-               (with_stats ? uint64_t(std::max(g, 1u)) * 20 : 0);
+               (with_stats ? uint64_t(std::max(g, 1u)) * render::FrameResources::kStatsBytesPerGaussian : 0);
     };
     const auto entries_for = [&](uint32_t g) {
         return static_cast<uint32_t>(std::min(std::ceil(g * chunk_entries_per_gaussian), double(0x7fffffffu)));
@@ -451,7 +458,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     std::deque<std::pair<uint32_t, uint32_t>> pending;
     for (uint32_t c = 0; c < std::max(chunk_count, 1u); ++c)
         pending.emplace_back(c * chunk_size, std::min(drawable, (c + 1) * chunk_size));
-    const VkDeviceSize counters_offset = read_back ? uint64_t(pixels) * 24 : 0;
+    const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
     uint32_t drawn = 0;
     while (!pending.empty()) {
         const auto [begin, end] = pending.front();
@@ -497,11 +504,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         stream.begin();
         record_blend_pass(stream, params.size[2], params.size[3], with_stats, &flags);
         if (with_stats) copy_stats(stream, count);
-        if (last && read_back) {
-            stream.copy(frame.color_alpha, frame.readback, uint64_t(pixels) * 16, 0, 0);
-            stream.copy(frame.depth, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 16);
-            stream.copy(frame.contributors, frame.readback, uint64_t(pixels) * 4, 0, uint64_t(pixels) * 20);
-        }
+        if (last && read_back) copy_image_to_readback(stream, pixels);
         stream.submit_and_wait();
         add_stage_times();
         if (with_stats) unpack_stats(count, indices.data(), gathered);
@@ -539,8 +542,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
     if ((target.image != VK_NULL_HANDLE) == (target.buffer != VK_NULL_HANDLE))
         throw std::invalid_argument("Renderer::record: set exactly one of RenderTarget::image and ::buffer");
     camera.validate();
-    const uint32_t pixels = static_cast<uint32_t>(camera.width) * static_cast<uint32_t>(camera.height);
-    const uint32_t tiles = ((camera.width + 15) / 16) * ((camera.height + 15) / 16);
+    const auto [pixels, tiles] = render::image_extent(camera);
     const bool packs = pixel_bytes == 4;
 
     // The last recorded frame that finished says how many tile entries its view needed.
