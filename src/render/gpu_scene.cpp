@@ -59,9 +59,13 @@ GpuScene GpuScene::upload(const gpu::Context& context, const HostScene& host, co
     return scene;
 }
 
-uint64_t GpuScene::bytes_for(uint32_t count, int sh_degree, bool half_sh) {
+uint64_t GpuScene::sh_bytes_for(uint32_t count, int sh_degree, bool half_sh) {
     const uint64_t sh_values = uint64_t(count) * sh_coefficients_for_degree(sh_degree) * 3;
-    return uint64_t(count) * 48 + (half_sh ? (sh_values + 1) / 2 * 4 : sh_values * 4);
+    return half_sh ? (sh_values + 1) / 2 * 4 : sh_values * 4;
+}
+
+uint64_t GpuScene::bytes_for(uint32_t count, int sh_degree, bool half_sh) {
+    return uint64_t(count) * kParamBytesPerGaussian + sh_bytes_for(count, sh_degree, half_sh);
 }
 
 }  // namespace vksplat::render

@@ -31,7 +31,11 @@ struct GpuScene {
     gpu::Buffer params;  // 3 vec4 per Gaussian: (position, opacity), (scale, 0), (quaternion w, x, y, z)
     gpu::Buffer sh;      // [Gaussian][coefficient][rgb], float or half
 
+    static constexpr uint64_t kParamBytesPerGaussian = 48;  // the 3 vec4 of params
+
     static GpuScene upload(const gpu::Context& context, const HostScene& host, const SceneStorage& storage);
+    // Device bytes of `count` Gaussians' SH, float or packed halves.
+    static uint64_t sh_bytes_for(uint32_t count, int sh_degree, bool half_sh);
     // Device bytes of `count` Gaussians' parameters and SH (what upload() allocates).
     static uint64_t bytes_for(uint32_t count, int sh_degree, bool half_sh);
 };

@@ -28,11 +28,10 @@ std::vector<uint32_t> depth_order(const HostScene& host, const CameraParams& par
 
 SceneChunks::SceneChunks(const gpu::Context& context, uint32_t capacity_, int sh_degree, bool half_sh)
     : capacity(std::max(capacity_, 1u)) {
-    const uint64_t sh_values = uint64_t(capacity) * sh_coefficients_for_degree(sh_degree) * 3;
-    const uint64_t sh_bytes = half_sh ? (sh_values + 1) / 2 * 4 : sh_values * 4;
+    const uint64_t sh_bytes = GpuScene::sh_bytes_for(capacity, sh_degree, half_sh);
     device.sh_degree = sh_degree;
     device.half_sh = half_sh;
-    device.params = gpu::Buffer(context, uint64_t(capacity) * 48, gpu::MemoryKind::device, "Gaussian parameters (chunk)");
+    device.params = gpu::Buffer(context, uint64_t(capacity) * GpuScene::kParamBytesPerGaussian, gpu::MemoryKind::device, "Gaussian parameters (chunk)");
     device.sh = gpu::Buffer(context, sh_bytes, gpu::MemoryKind::device, "spherical harmonics (chunk)");
     staging_params = gpu::Buffer(context, device.params.size(), gpu::MemoryKind::upload, "chunk parameters (staging)");
     staging_sh = gpu::Buffer(context, sh_bytes, gpu::MemoryKind::upload, "chunk SH (staging)");
@@ -56,9 +55,9 @@ void SceneChunks::stage(const HostScene& host, std::span<const uint32_t> indices
 }
 
 void SceneChunks::record_upload(gpu::CommandStream& stream) const {
-    const uint64_t sh_values = uint64_t(device.count) * sh_coefficients_for_degree(device.sh_degree) * 3;
-    const uint64_t sh_bytes = device.half_sh ? (sh_values + 1) / 2 * 4 : sh_values * 4;
-    if (device.count > 0) stream.copy(staging_params, device.params, uint64_t(device.count) * 48);
+    const uint64_t sh_bytes = GpuScene::sh_bytes_for(device.count, device.sh_degree, device.half_sh);
+    if (device.count > 0)
+        stream.copy(staging_params, device.params, uint64_t(device.count) * GpuScene::kParamBytesPerGaussian);
     if (sh_bytes > 0) stream.copy(staging_sh, device.sh, sh_bytes);
     stream.barrier();
 }
