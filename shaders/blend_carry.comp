@@ -1,6 +1,7 @@
 #version 460
 // Blend of one depth-ordered chunk of a frame, carrying each pixel's state to the next chunk
-// (frames larger than the memory budget; src/render/chunked_frame.cpp). See include/blend_body.glsl.
+// (frames larger than the memory budget: Renderer::Impl::run_chunked, render/scene_chunks.*).
+// See include/blend_body.glsl.
 #extension GL_GOOGLE_include_directive : require
 #define GATHER_STATS 0
 #define CARRY_STATE 1
