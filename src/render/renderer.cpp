@@ -1,7 +1,6 @@
 #include "vksplat/render/renderer.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <cstdio>
@@ -11,25 +10,18 @@
 #include "gpu/command_stream.hpp"
 #include "gpu/compute_pipeline.hpp"
 #include "gpu/context_impl.hpp"
-#include "gpu/prefix_scan.hpp"
-#include "gpu/radix_sort.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/passes.hpp"
 #include "render/scene_chunks.hpp"
 #include "render/target_copy.hpp"
+#include "render/tile_binning.hpp"
 #include "shaders/blend.spv.h"
 #include "shaders/blend_carry.spv.h"
 #include "shaders/blend_stats_carry.spv.h"
 #include "shaders/blend_stats.spv.h"
-#include "shaders/compact_visible.spv.h"
-#include "shaders/emit_tile_entries.spv.h"
-#include "shaders/gather_tile_counts.spv.h"
-#include "shaders/indirect_args.spv.h"
 #include "shaders/pack_rgba8.spv.h"
-#include "shaders/preprocess.spv.h"
-#include "shaders/tile_ranges.spv.h"
 #include "vksplat/error.hpp"
 
 namespace vksplat {
@@ -39,10 +31,6 @@ namespace {
 // frame grows it when a view needs more.
 constexpr uint32_t kInitialEntriesPerGaussian = 4;
 constexpr double kEntryGrowth = 1.25;
-
-// Bits of the tile sort's keys. They cover the padding id (= tile count) too, which sorts after
-// every real tile.
-uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
 
 std::string mebibytes(uint64_t bytes) {
     if (bytes < (1 << 20)) return std::to_string(bytes) + " bytes";
@@ -55,10 +43,8 @@ std::string mebibytes(uint64_t bytes) {
 
 struct Renderer::Impl {
     const gpu::Context& context;
-    gpu::ComputePipeline preprocess, compact_visible, indirect_args, gather_tile_counts, emit_tile_entries,
-        tile_ranges, blend;
-    gpu::PrefixScan scan;
-    gpu::RadixSort sort;
+    render::TileBinning binning;
+    gpu::ComputePipeline blend;
     gpu::CommandStream stream;
     std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
     std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
@@ -80,21 +66,10 @@ struct Renderer::Impl {
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          preprocess(c, gpu::spirv_words(preprocess_spv), sizeof(render::PreprocessPush), {}, "preprocess"),
-          compact_visible(c, gpu::spirv_words(compact_visible_spv), sizeof(render::CompactVisiblePush), {}, "compact_visible"),
-          indirect_args(c, gpu::spirv_words(indirect_args_spv), sizeof(render::IndirectArgsPush), {}, "indirect_args"),
-          gather_tile_counts(c, gpu::spirv_words(gather_tile_counts_spv), sizeof(render::GatherTileCountsPush), {},
-                             "gather_tile_counts"),
-          emit_tile_entries(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(render::EmitTileEntriesPush), {},
-                            "emit_tile_entries"),
-          tile_ranges(c, gpu::spirv_words(tile_ranges_spv), sizeof(render::TileRangesPush), {}, "tile_ranges"),
+          binning(c),
           blend(c, gpu::spirv_words(blend_spv), sizeof(render::BlendPush), {}, "blend"),
-          scan(c),
-          sort(c),
           stream(c),
           frame(c) {}
-
-    VkDeviceAddress counter(render::Counter slot) const { return frame.counters.address() + slot * sizeof(uint32_t); }
 
     // Everything from the per-frame parameters to the blended image of `source` (the scene, or one
     // chunk of it), recorded into `stream`: the passes up to the tile ranges, then the blend.
@@ -166,80 +141,14 @@ void Renderer::Impl::record_passes(gpu::CommandStream& stream, const render::Cam
 
 void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::CameraParams& params,
                                   const render::GpuScene& source, bool gather_stats) {
-    using namespace render;
-    const uint32_t n = source.count;
-    const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
     auto& f = frame;
-
-    stream.update(f.camera, &params, sizeof(params));
-    uint32_t initial_counters[kCounterCount] = {};
-    initial_counters[kCounterGaussians] = n;
-    stream.update(f.counters, initial_counters, sizeof(initial_counters));
-    stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
     if (gather_stats) {
         stream.fill(f.stat_weight, 0);
         stream.fill(f.stat_max_weight, 0);
         stream.fill(f.stat_pixels, 0);
         stream.fill(f.stat_centre_weight, 0);
     }
-    stream.barrier();
-
-    record_preprocess(stream, preprocess,
-                      {f.camera.address(), source.params.address(), source.sh.address(), f.means_depth.address(),
-                       f.conic_opacity.address(), f.colors.address(), f.rects.address(), f.tiles_touched.address(),
-                       f.visible.address()},
-                      n);
-    stream.barrier();
-    stream.mark("preprocess");
-
-    scan.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterGaussians),
-                counter(kCounterVisible), *f.scan_scratch);
-    stream.barrier();
-    record_compact_visible(stream, compact_visible,
-                           {f.camera.address(), f.visible.address(), f.visible_offsets.address(),
-                            f.means_depth.address(), f.depth_keys.address(), f.depth_values.address()},
-                           n);
-    record_indirect_args(stream, indirect_args,
-                         {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
-                          f.gaussian_capacity, 256});
-    stream.barrier();
-    stream.mark("compact");
-
-    sort.record(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), 32, *f.sort_scratch);
-    stream.barrier();
-    stream.mark("depth sort");
-
-    record_gather_tile_counts(stream, gather_tile_counts,
-                              {f.counters.address(), f.depth_values.address(), f.tiles_touched.address(),
-                               f.sorted_tile_counts.address()},
-                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
-    stream.barrier();
-    scan.record(stream, f.sorted_tile_counts.address(), f.entry_offsets.address(), counter(kCounterVisible),
-                counter(kCounterEntriesNeeded), *f.scan_scratch);
-    stream.barrier();
-    record_indirect_args(stream, indirect_args,
-                         {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
-                          f.entry_capacity, 256});
-    record_emit_tile_entries(stream, emit_tile_entries,
-                             {f.camera.address(), f.counters.address(), f.depth_values.address(),
-                              f.entry_offsets.address(), f.rects.address(), f.means_depth.address(),
-                              f.conic_opacity.address(), f.tiles_touched.address(), f.tile_keys.address(),
-                              f.tile_values.address()},
-                             f.counters, kCounterVisibleArgs * sizeof(uint32_t));
-    stream.barrier();
-    stream.mark("tile entries");
-
-    // A stable sort on just the tile bits keeps each tile's entries in depth order.
-    const uint32_t tile_bits = tile_key_bits(tiles_x * tiles_y);
-    sort.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_bits, *f.sort_scratch);
-    stream.barrier();
-    stream.mark("tile sort");
-
-    record_tile_ranges(stream, tile_ranges,
-                       {f.counters.address(), f.tile_keys.address(), f.ranges.address(), tiles_x * tiles_y},
-                       f.counters, kCounterEntryArgs * sizeof(uint32_t));
-    stream.barrier();
-    stream.mark("ranges");
+    binning.record(stream, f, params, {source.params.address(), source.sh.address(), source.count});
 }
 
 void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y,
@@ -362,7 +271,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     for (;;) {
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
                                                        scene.half_sh, frame.entry_capacity);
-        stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
+        stats.tile_key_bits = render::tile_key_bits(params.size[2] * params.size[3]);
         record_frame(params, read_back, settings.gather_stats);
         uint32_t counters[render::kCounterCount];
         const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
@@ -468,7 +377,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         chunks->stage(host, indices);
         const auto params = render::make_camera_params(camera, settings, chunks->device.count, degree, half,
                                                        frame.entry_capacity);
-        stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
+        stats.tile_key_bits = render::tile_key_bits(params.size[2] * params.size[3]);
         stream.begin();
         chunks->record_upload(stream);
         record_tiles(stream, params, chunks->device, with_stats);
@@ -567,7 +476,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
 
     const auto params =
         render::make_camera_params(camera, settings, scene.count, scene.sh_degree, scene.half_sh, frame.entry_capacity);
-    stats.tile_key_bits = tile_key_bits(params.size[2] * params.size[3]);
+    stats.tile_key_bits = render::tile_key_bits(params.size[2] * params.size[3]);
     gpu::CommandStream out(context, gpu::CommandStream::Recording{command_buffer});
     out.barrier_after_everything();
     record_passes(out, params, scene, false);

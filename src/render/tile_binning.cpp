@@ -1,0 +1,99 @@
+#include "render/tile_binning.hpp"
+
+#include <bit>
+
+#include "render/passes.hpp"
+#include "shaders/compact_visible.spv.h"
+#include "shaders/emit_tile_entries.spv.h"
+#include "shaders/gather_tile_counts.spv.h"
+#include "shaders/indirect_args.spv.h"
+#include "shaders/preprocess.spv.h"
+#include "shaders/tile_ranges.spv.h"
+
+namespace vksplat::render {
+
+uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
+
+TileBinning::TileBinning(const gpu::Context& c)
+    : preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
+      compact_visible_(c, gpu::spirv_words(compact_visible_spv), sizeof(CompactVisiblePush), {}, "compact_visible"),
+      indirect_args_(c, gpu::spirv_words(indirect_args_spv), sizeof(IndirectArgsPush), {}, "indirect_args"),
+      gather_tile_counts_(c, gpu::spirv_words(gather_tile_counts_spv), sizeof(GatherTileCountsPush), {},
+                          "gather_tile_counts"),
+      emit_tile_entries_(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(EmitTileEntriesPush), {},
+                         "emit_tile_entries"),
+      tile_ranges_(c, gpu::spirv_words(tile_ranges_spv), sizeof(TileRangesPush), {}, "tile_ranges"),
+      scan_(c),
+      sort_(c) {}
+
+void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const CameraParams& params,
+                         const SceneAddresses& scene) const {
+    const uint32_t n = scene.count;
+    const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
+    const auto counter = [&](Counter slot) { return f.counters.address() + slot * sizeof(uint32_t); };
+
+    stream.update(f.camera, &params, sizeof(params));
+    uint32_t initial_counters[kCounterCount] = {};
+    initial_counters[kCounterGaussians] = n;
+    stream.update(f.counters, initial_counters, sizeof(initial_counters));
+    stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
+    stream.barrier();
+
+    record_preprocess(stream, preprocess_,
+                      {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.conic_opacity.address(),
+                       f.colors.address(), f.rects.address(), f.tiles_touched.address(), f.visible.address()},
+                      n);
+    stream.barrier();
+    stream.mark("preprocess");
+
+    scan_.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterGaussians),
+                 counter(kCounterVisible), *f.scan_scratch);
+    stream.barrier();
+    record_compact_visible(stream, compact_visible_,
+                           {f.camera.address(), f.visible.address(), f.visible_offsets.address(),
+                            f.means_depth.address(), f.depth_keys.address(), f.depth_values.address()},
+                           n);
+    record_indirect_args(stream, indirect_args_,
+                         {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
+                          f.gaussian_capacity, 256});
+    stream.barrier();
+    stream.mark("compact");
+
+    sort_.record(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), 32, *f.sort_scratch);
+    stream.barrier();
+    stream.mark("depth sort");
+
+    record_gather_tile_counts(stream, gather_tile_counts_,
+                              {f.counters.address(), f.depth_values.address(), f.tiles_touched.address(),
+                               f.sorted_tile_counts.address()},
+                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
+    stream.barrier();
+    scan_.record(stream, f.sorted_tile_counts.address(), f.entry_offsets.address(), counter(kCounterVisible),
+                 counter(kCounterEntriesNeeded), *f.scan_scratch);
+    stream.barrier();
+    record_indirect_args(stream, indirect_args_,
+                         {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
+                          f.entry_capacity, 256});
+    record_emit_tile_entries(stream, emit_tile_entries_,
+                             {f.camera.address(), f.counters.address(), f.depth_values.address(),
+                              f.entry_offsets.address(), f.rects.address(), f.means_depth.address(),
+                              f.conic_opacity.address(), f.tiles_touched.address(), f.tile_keys.address(),
+                              f.tile_values.address()},
+                             f.counters, kCounterVisibleArgs * sizeof(uint32_t));
+    stream.barrier();
+    stream.mark("tile entries");
+
+    // A stable sort on just the tile bits keeps each tile's entries in depth order.
+    sort_.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_key_bits(tiles_x * tiles_y),
+                 *f.sort_scratch);
+    stream.barrier();
+    stream.mark("tile sort");
+
+    record_tile_ranges(stream, tile_ranges_,
+                       {f.counters.address(), f.tile_keys.address(), f.ranges.address(), tiles_x * tiles_y},
+                       f.counters, kCounterEntryArgs * sizeof(uint32_t));
+    stream.barrier();
+    stream.mark("ranges");
+}
+
+}  // namespace vksplat::render

@@ -1,0 +1,48 @@
+#pragma once
+// TileBinning: every pass of a frame before the blend, from the scene's activated parameters to
+// each tile's depth-ordered list of splats: preprocess, compaction of the visible splats, the
+// depth sort, the tile entries, the stable tile sort and the tile ranges. The renderer and the
+// trainer both record it, then blend (and the trainer differentiates) what it leaves in the
+// FrameResources.
+#include <cstdint>
+
+#include "gpu/command_stream.hpp"
+#include "gpu/compute_pipeline.hpp"
+#include "gpu/prefix_scan.hpp"
+#include "gpu/radix_sort.hpp"
+#include "render/frame_layout.hpp"
+#include "render/frame_resources.hpp"
+
+namespace vksplat::render {
+
+// The activated scene a frame reads: GpuScene's layout, possibly inside larger buffers.
+struct SceneAddresses {
+    VkDeviceAddress params = 0;  // 3 vec4 per Gaussian: (position, opacity), (scale, 0), (quaternion w, x, y, z)
+    VkDeviceAddress sh = 0;      // [Gaussian][coefficient][rgb], float or packed halves
+    uint32_t count = 0;
+};
+
+// Bits of the tile sort's keys. They cover the padding id (= tile count) too, which sorts after
+// every real tile.
+uint32_t tile_key_bits(uint32_t tiles);
+
+class TileBinning {
+public:
+    explicit TileBinning(const gpu::Context& context);
+
+    // Records the camera and counter uploads and the passes up to the tile ranges into `stream`,
+    // working in `frame` (sized for the scene, the image and params.entry_capacity entries by the
+    // caller). Ends with a barrier: the ranges, the entries and the per-splat arrays are ready.
+    // Entries beyond the capacity are dropped; the caller compares the counter
+    // kCounterEntriesNeeded with the capacity after the submission.
+    void record(gpu::CommandStream& stream, FrameResources& frame, const CameraParams& params,
+                const SceneAddresses& scene) const;
+
+private:
+    gpu::ComputePipeline preprocess_, compact_visible_, indirect_args_, gather_tile_counts_, emit_tile_entries_,
+        tile_ranges_;
+    gpu::PrefixScan scan_;
+    gpu::RadixSort sort_;
+};
+
+}  // namespace vksplat::render
