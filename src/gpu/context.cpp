@@ -207,12 +207,17 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
         if (families[family].timestampValidBits > 0) info.timestamp_period_ns = basic.limits.timestampPeriod;
     }
 
+    VkPhysicalDeviceShaderAtomicFloatFeaturesEXT float_atomics{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
     VkPhysicalDeviceVulkan12Features features12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &features12;
+    const bool has_float_atomics = has_extension(extensions, VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+    if (has_float_atomics) features12.pNext = &float_atomics;
     if (basic.apiVersion >= VK_API_VERSION_1_2) vkGetPhysicalDeviceFeatures2(device, &features);
 
     info.int64_atomics = features.features.shaderInt64 && features12.shaderBufferInt64Atomics;
+    info.float_atomics = has_float_atomics && float_atomics.shaderBufferFloat32AtomicAdd;
 
     const VkSubgroupFeatureFlags needed_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
                                               VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
@@ -327,11 +332,18 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
         VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
         features.features.shaderInt64 = d.info.int64_atomics;
         features.pNext = &features12;
+        VkPhysicalDeviceShaderAtomicFloatFeaturesEXT float_atomics{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SHADER_ATOMIC_FLOAT_FEATURES_EXT};
+        float_atomics.shaderBufferFloat32AtomicAdd = VK_TRUE;
 
         std::vector<const char*> extensions;
         // A portability (MoltenVK) device must be created with this extension enabled.
         if (has_extension(device_extensions(d.physical_device), "VK_KHR_portability_subset"))
             extensions.push_back("VK_KHR_portability_subset");
+        if (d.info.float_atomics) {
+            extensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
+            features12.pNext = &float_atomics;
+        }
 
         VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         info.pNext = &features;
@@ -383,6 +395,7 @@ Context::Context(const AdoptedDevice& adopted) : impl_(std::make_unique<Impl>())
     d.info.timestamp_period_ns =
         families[d.queue_family].timestampValidBits > 0 ? properties.limits.timestampPeriod : 0.0f;
     d.info.int64_atomics = d.info.int64_atomics && adopted.int64_atomics_enabled;
+    d.info.float_atomics = d.info.float_atomics && adopted.float_atomics_enabled;
     vkGetPhysicalDeviceMemoryProperties(d.physical_device, &d.memory);
     volkLoadDeviceTable(&d.vk, d.device);
 }

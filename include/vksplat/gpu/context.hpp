@@ -25,6 +25,9 @@ struct DeviceInfo {
     uint64_t device_local_budget = 0;
     float timestamp_period_ns = 0;      // 0 when the queue has no timestamps
     bool int64_atomics = false;         // 64-bit buffer atomics: needed for per-Gaussian statistics
+    // 32-bit float atomic add on buffers (VK_EXT_shader_atomic_float): the backward passes add
+    // gradients with it; without it they use a compare-and-swap loop (same sums, slower).
+    bool float_atomics = false;
     bool usable = false;                // has what vksplat needs (see unusable_reason)
     std::string unusable_reason;
 
@@ -64,6 +67,8 @@ struct AdoptedDevice {
     PFN_vkGetInstanceProcAddr get_instance_proc_addr = nullptr;
     // Set if the device was created with shaderInt64 and shaderBufferInt64Atomics.
     bool int64_atomics_enabled = false;
+    // Set if the device was created with VK_EXT_shader_atomic_float's shaderBufferFloat32AtomicAdd.
+    bool float_atomics_enabled = false;
 };
 
 // Every physical device, with whether vksplat can use it.
