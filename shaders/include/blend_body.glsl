@@ -7,6 +7,12 @@
 #ifndef CARRY_STATE
 #define CARRY_STATE 0
 #endif
+// TRAIN_OUTPUTS 1 (blend_train.comp): also write what the backward pass (blend_backward.glsl)
+// replays each pixel from: its final transmittance, exactly (1 - alpha loses it near 1e-4), and
+// the end of the part of its tile's list it walked (one past the last splat it blended).
+#ifndef TRAIN_OUTPUTS
+#define TRAIN_OUTPUTS 0
+#endif
 // The blend pass, included by blend.comp (GATHER_STATS 0) and blend_stats.comp (1), so that the
 // plain pipeline holds no statistics code (and needs no 64-bit integers) at all.
 //
@@ -24,35 +30,11 @@
 #include "buffers.glsl"
 #include "constants.glsl"
 #include "frame.glsl"
+#include "tile_blocks.glsl"
 #include "tile_culling.glsl"
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
-
-// The tile is walked as 8 blocks of 8x4 pixels, 32 consecutive invocations each (one warp on
-// NVIDIA). When a splat enters shared memory, the thread that fetched it marks which blocks its
-// alpha >= 1/255 ellipse meets (tile_culling.glsl); a pixel skips splats that miss its block
-// without evaluating them. Most splats are a few pixels wide and touch one or two blocks, so
-// most of a tile's evaluations go. Skipped splats have alpha < 1/255 there: pixels are unchanged.
-const uvec2 BLOCK_SIZE = uvec2(8, 4);
-const uint BLOCKS_ACROSS = TILE_WIDTH / BLOCK_SIZE.x;
-
-uvec2 pixel_in_tile(uint invocation) {
-    const uint block = invocation / (BLOCK_SIZE.x * BLOCK_SIZE.y);
-    const uint within = invocation % (BLOCK_SIZE.x * BLOCK_SIZE.y);
-    return uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE +
-           uvec2(within % BLOCK_SIZE.x, within / BLOCK_SIZE.x);
-}
-
-uint touched_blocks(vec2 mean, vec4 conic_opacity, uvec2 tile_origin) {
-    const float bound = touch_bound(conic_opacity.w);
-    uint mask = 0u;
-    for (uint block = 0u; block < TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y); ++block) {
-        const uvec2 first = tile_origin + uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE;
-        if (ellipse_meets_box(mean, conic_opacity.xyz, bound, first, BLOCK_SIZE)) mask |= 1u << block;
-    }
-    return mask;
-}
 
 #if GATHER_STATS
 // alpha * T in 32.32 fixed point: integer atomics make the sums the same every run.
@@ -70,6 +52,10 @@ layout(push_constant) uniform Push {
     Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T
     Floats out_depth;        // expected depth of the blended splats
     Uints out_contributors;  // splats blended into the pixel
+#if TRAIN_OUTPUTS
+    Floats out_transmittance;  // final T
+    Uints out_last;            // one past the position (in the tile's list) of the last splat blended
+#endif
 #if GATHER_STATS
     Uint64s stat_weight;     // per Gaussian: sum of alpha * T (fixed point)
     Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
@@ -148,6 +134,7 @@ struct PixelState {
     float transmittance;
     float depth_sum;
     uint contributors;
+    uint last;  // one past the list position of the last splat blended (TRAIN_OUTPUTS)
     bool done;  // transmittance would have fallen below MIN_TRANSMITTANCE: nothing more is added
 };
 
@@ -163,7 +150,7 @@ float splat_alpha(uint j, uint my_block, vec2 pixel_f) {
 }
 
 // Composites the batch's splat j behind what the pixel holds, as the reference does.
-void blend_splat(uint j, float alpha, uvec2 pixel, inout PixelState state) {
+void blend_splat(uint j, uint position, float alpha, uvec2 pixel, inout PixelState state) {
     if (alpha < MIN_ALPHA) return;
     const float next_transmittance = state.transmittance * (1.0 - alpha);
     if (next_transmittance < MIN_TRANSMITTANCE) {
@@ -182,6 +169,7 @@ void blend_splat(uint j, float alpha, uvec2 pixel, inout PixelState state) {
     state.depth_sum += batch_mean_depth[j].z * weight;
     state.transmittance = next_transmittance;
     ++state.contributors;
+    state.last = position + 1u;
 }
 
 void main() {
@@ -193,7 +181,7 @@ void main() {
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
-    PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, !inside);
+    PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, 0u, !inside);
 #if CARRY_STATE
     if (inside && (pc.carry_flags & CARRY_LOAD) != 0u) {
         const uint index = pixel.y * cam.size.x + pixel.x;
@@ -201,7 +189,7 @@ void main() {
         const vec2 depth_count = pc.carried_depth_count.v[index];
         const uint contributors = floatBitsToUint(depth_count.y);
         // A pixel that stopped stays stopped.
-        state = PixelState(carried.rgb, carried.a, depth_count.x, contributors & ~CARRY_STOPPED,
+        state = PixelState(carried.rgb, carried.a, depth_count.x, contributors & ~CARRY_STOPPED, 0u,
                            (contributors & CARRY_STOPPED) != 0u);
     }
 #endif
@@ -250,8 +238,8 @@ void main() {
             // exp chains overlap; they are then composited in order, exactly as one at a time.
             const float alpha0 = splat_alpha(j, my_block, pixel_f);
             const float alpha1 = j + 1u < batch_size ? splat_alpha(j + 1u, my_block, pixel_f) : 0.0;
-            blend_splat(j, alpha0, pixel, state);
-            if (!state.done) blend_splat(j + 1u, alpha1, pixel, state);
+            blend_splat(j, start + j, alpha0, pixel, state);
+            if (!state.done) blend_splat(j + 1u, start + j + 1u, alpha1, pixel, state);
         }
         barrier();  // the next batch overwrites shared memory
     }
@@ -270,5 +258,9 @@ void main() {
         pc.out_color_alpha.v[index] = vec4(state.color + state.transmittance * cam.background.rgb, alpha);
         pc.out_depth.v[index] = alpha > 0.0 ? state.depth_sum / alpha : 0.0;
         pc.out_contributors.v[index] = state.contributors;
+#if TRAIN_OUTPUTS
+        pc.out_transmittance.v[index] = state.transmittance;
+        pc.out_last.v[index] = state.last;
+#endif
     }
 }

@@ -1,0 +1,34 @@
+// How a blend workgroup walks its 16x16 tile, shared by the blend (blend_body.glsl) and its
+// backward pass (blend_backward.glsl), which must visit the same pixels with the same splat masks.
+#ifndef VKSPLAT_TILE_BLOCKS_GLSL
+#define VKSPLAT_TILE_BLOCKS_GLSL
+
+#include "constants.glsl"
+#include "tile_culling.glsl"
+
+// The tile is walked as 8 blocks of 8x4 pixels, 32 consecutive invocations each (one warp on
+// NVIDIA). When a splat enters shared memory, the thread that fetched it marks which blocks its
+// alpha >= 1/255 ellipse meets (tile_culling.glsl); a pixel skips splats that miss its block
+// without evaluating them. Most splats are a few pixels wide and touch one or two blocks, so
+// most of a tile's evaluations go. Skipped splats have alpha < 1/255 there: pixels are unchanged.
+const uvec2 BLOCK_SIZE = uvec2(8, 4);
+const uint BLOCKS_ACROSS = TILE_WIDTH / BLOCK_SIZE.x;
+
+uvec2 pixel_in_tile(uint invocation) {
+    const uint block = invocation / (BLOCK_SIZE.x * BLOCK_SIZE.y);
+    const uint within = invocation % (BLOCK_SIZE.x * BLOCK_SIZE.y);
+    return uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE +
+           uvec2(within % BLOCK_SIZE.x, within / BLOCK_SIZE.x);
+}
+
+uint touched_blocks(vec2 mean, vec4 conic_opacity, uvec2 tile_origin) {
+    const float bound = touch_bound(conic_opacity.w);
+    uint mask = 0u;
+    for (uint block = 0u; block < TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y); ++block) {
+        const uvec2 first = tile_origin + uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE;
+        if (ellipse_meets_box(mean, conic_opacity.xyz, bound, first, BLOCK_SIZE)) mask |= 1u << block;
+    }
+    return mask;
+}
+
+#endif
