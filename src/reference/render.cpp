@@ -78,51 +78,76 @@ PixelResult blend_pixel(const std::vector<ProjectedGaussian>& splats, const std:
     return result;
 }
 
-}  // namespace
+// Every pixel's blend, row-major, and the projected splats (for the statistics).
+struct BlendedImage {
+    std::vector<ProjectedGaussian> splats;
+    std::vector<PixelResult> pixels;
+};
 
-RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings) {
+BlendedImage blend_image(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings,
+                         GaussianStats* stats) {
     camera.validate();
     cloud.check_consistent();
     const int sh_degree = std::min(cloud.sh_degree, settings.max_sh_degree);
-    std::vector<ProjectedGaussian> splats(cloud.size());
-    for (size_t i = 0; i < cloud.size(); ++i) splats[i] = project(cloud, i, camera, sh_degree);
+    BlendedImage image;
+    image.splats.resize(cloud.size());
+    for (size_t i = 0; i < cloud.size(); ++i) image.splats[i] = project(cloud, i, camera, sh_degree);
 
     const glm::ivec2 grid = tile_grid(camera);
-    const std::vector<std::vector<uint32_t>> lists = tile_lists(splats, grid);
-
-    RenderOutput out;
-    out.width = camera.width;
-    out.height = camera.height;
-    const size_t pixels = static_cast<size_t>(camera.width) * camera.height;
-    out.rgb.resize(pixels * 3);
-    out.alpha.resize(pixels);
-    out.depth.resize(pixels);
-    out.contributors.resize(pixels);
-    GaussianStats* stats = settings.gather_stats ? &out.stats : nullptr;
+    const std::vector<std::vector<uint32_t>> lists = tile_lists(image.splats, grid);
     if (stats) {
         stats->resize(cloud.size());
-        for (size_t i = 0; i < splats.size(); ++i) {
-            if (!splats[i].visible) continue;
+        for (size_t i = 0; i < image.splats.size(); ++i) {
+            const ProjectedGaussian& s = image.splats[i];
+            if (!s.visible) continue;
             stats->visible[i] = 1;
-            stats->screen_x[i] = static_cast<float>(splats[i].mean.x);
-            stats->screen_y[i] = static_cast<float>(splats[i].mean.y);
-            stats->depth[i] = static_cast<float>(splats[i].depth);
-            stats->radius[i] = static_cast<float>(splats[i].radius);
+            stats->screen_x[i] = static_cast<float>(s.mean.x);
+            stats->screen_y[i] = static_cast<float>(s.mean.y);
+            stats->depth[i] = static_cast<float>(s.depth);
+            stats->radius[i] = static_cast<float>(s.radius);
         }
     }
+    image.pixels.resize(static_cast<size_t>(camera.width) * camera.height);
     for (int y = 0; y < camera.height; ++y)
         for (int x = 0; x < camera.width; ++x) {
             const size_t tile = static_cast<size_t>(y / static_cast<int>(kTileHeight)) * grid.x +
                                 static_cast<size_t>(x / static_cast<int>(kTileWidth));
-            const PixelResult p = blend_pixel(splats, lists[tile], glm::dvec2(x, y), stats);
-            const size_t i = static_cast<size_t>(y) * camera.width + x;
-            for (int c = 0; c < 3; ++c)
-                out.rgb[i * 3 + c] = static_cast<float>(p.color[c] + p.transmittance * settings.background[c]);
-            out.alpha[i] = static_cast<float>(1.0 - p.transmittance);
-            out.depth[i] = p.weight_sum > 0.0 ? static_cast<float>(p.depth_sum / p.weight_sum) : 0.0f;
-            out.contributors[i] = p.contributors;
+            image.pixels[static_cast<size_t>(y) * camera.width + x] =
+                blend_pixel(image.splats, lists[tile], glm::dvec2(x, y), stats);
         }
+    return image;
+}
+
+}  // namespace
+
+RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings) {
+    RenderOutput out;
+    const BlendedImage image = blend_image(cloud, camera, settings, settings.gather_stats ? &out.stats : nullptr);
+    out.width = camera.width;
+    out.height = camera.height;
+    const size_t pixels = image.pixels.size();
+    out.rgb.resize(pixels * 3);
+    out.alpha.resize(pixels);
+    out.depth.resize(pixels);
+    out.contributors.resize(pixels);
+    for (size_t i = 0; i < pixels; ++i) {
+        const PixelResult& p = image.pixels[i];
+        for (int c = 0; c < 3; ++c)
+            out.rgb[i * 3 + c] = static_cast<float>(p.color[c] + p.transmittance * settings.background[c]);
+        out.alpha[i] = static_cast<float>(1.0 - p.transmittance);
+        out.depth[i] = p.weight_sum > 0.0 ? static_cast<float>(p.depth_sum / p.weight_sum) : 0.0f;
+        out.contributors[i] = p.contributors;
+    }
     return out;
+}
+
+std::vector<double> render_rgb(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings) {
+    const BlendedImage image = blend_image(cloud, camera, settings, nullptr);
+    std::vector<double> rgb(image.pixels.size() * 3);
+    for (size_t i = 0; i < image.pixels.size(); ++i)
+        for (int c = 0; c < 3; ++c)
+            rgb[i * 3 + c] = image.pixels[i].color[c] + image.pixels[i].transmittance * settings.background[c];
+    return rgb;
 }
 
 }  // namespace vksplat::reference

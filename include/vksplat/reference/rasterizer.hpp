@@ -8,6 +8,7 @@
 // Unlike the CUDA code it takes any image size and an off-centre principal point.
 #include <array>
 #include <cstddef>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -44,5 +45,9 @@ ProjectedGaussian project(const GaussianCloud& cloud, size_t index, const Camera
 // Uses SH degree min(cloud.sh_degree, settings.max_sh_degree). Throws if the camera fails
 // Camera::validate() or the cloud's arrays are inconsistent.
 RenderOutput render(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings);
+
+// The same picture's colour (background included) without rounding to float: 3 values per
+// pixel, row-major. What finite differences of the renderer are taken on.
+std::vector<double> render_rgb(const GaussianCloud& cloud, const Camera& camera, const RenderSettings& settings);
 
 }  // namespace vksplat::reference
