@@ -1,0 +1,117 @@
+#include "train/loss_passes.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+
+#include "shaders/loss_backward.spv.h"
+#include "shaders/loss_forward.spv.h"
+
+namespace vksplat::train {
+namespace {
+
+constexpr uint32_t kTile = 16;          // TILE of loss_window.glsl
+constexpr uint32_t kMaxGroups = 65535;  // MAX_GROUPS_X of buffers.glsl: the passes walk tiles in a grid-stride loop
+constexpr uint32_t kPlanes = 9;         // A, B, C per channel (loss_forward.comp)
+
+// The C++ twin of the Push block of loss_window.glsl; both passes take the same one.
+struct LossPush {
+    VkDeviceAddress rendered, photo, planes, partials, gradient;
+    uint32_t width, height, tiles_x, tiles;
+    float ssim_weight, inv_count;
+};
+static_assert(sizeof(LossPush) == 64, "LossPush must match the shaders' push-constant block");
+
+// The forward pass's sums of one workgroup, as it writes them (a vec4).
+struct Partial {
+    float l1, ssim, mse, unused;
+};
+
+}  // namespace
+
+struct LossPasses::Impl {
+    const gpu::Context& context;
+    gpu::ComputePipeline forward, backward;
+    gpu::Buffer planes, partials;  // device scratch, grown to the largest image recorded
+    gpu::Buffer readback;          // the partials of the last record(), for last()
+    // What last() needs of the last record().
+    uint32_t groups = 0;
+    double pixel_channels = 0;  // 3 * width * height
+    double ssim_weight = 0;
+
+    explicit Impl(const gpu::Context& c)
+        : context(c),
+          forward(c, gpu::spirv_words(loss_forward_spv), sizeof(LossPush), {}, "loss_forward"),
+          backward(c, gpu::spirv_words(loss_backward_spv), sizeof(LossPush), {}, "loss_backward") {}
+
+    // Replaces `buffer` by one of at least `bytes` when it is smaller; contents are not kept.
+    void reserve(gpu::Buffer& buffer, VkDeviceSize bytes, gpu::MemoryKind kind, const char* name) {
+        if (buffer && buffer.size() >= bytes) return;
+        buffer = gpu::Buffer(context, bytes, kind, name);
+    }
+};
+
+LossPasses::LossPasses(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
+
+LossPasses::~LossPasses() = default;
+
+void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
+    const uint64_t pixels = uint64_t(inputs.width) * inputs.height;
+    if (pixels == 0) throw std::invalid_argument("training loss: the image is empty");
+    // The shaders index the planes with 32-bit integers.
+    if (pixels * kPlanes > UINT32_MAX)
+        throw std::invalid_argument("training loss: " + std::to_string(inputs.width) + " x " +
+                                    std::to_string(inputs.height) + " pixels is too large an image");
+    Impl& d = *impl_;
+    const uint32_t tiles_x = (inputs.width + kTile - 1) / kTile;
+    const uint32_t tiles = tiles_x * ((inputs.height + kTile - 1) / kTile);
+    const uint32_t groups = std::min(tiles, kMaxGroups);
+    d.reserve(d.planes, pixels * kPlanes * sizeof(float), gpu::MemoryKind::device, "loss planes");
+    d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
+    d.reserve(d.readback, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
+    d.groups = groups;
+    d.pixel_channels = 3.0 * double(pixels);
+    d.ssim_weight = inputs.ssim_weight;
+
+    const LossPush push{
+        .rendered = inputs.rendered,
+        .photo = inputs.photo,
+        .planes = d.planes.address(),
+        .partials = d.partials.address(),
+        .gradient = inputs.gradient,
+        .width = inputs.width,
+        .height = inputs.height,
+        .tiles_x = tiles_x,
+        .tiles = tiles,
+        .ssim_weight = inputs.ssim_weight,
+        .inv_count = float(1.0 / d.pixel_channels),
+    };
+    stream.dispatch(d.forward, push, groups);
+    stream.barrier();
+    stream.copy(d.partials, d.readback, groups * sizeof(Partial));
+    stream.dispatch(d.backward, push, groups);
+    stream.barrier_before_host_read();
+}
+
+LossValue LossPasses::last() const {
+    const Impl& d = *impl_;
+    if (d.groups == 0) return {};
+    // In double, in workgroup order: the same sums on every run.
+    const auto* partials = static_cast<const Partial*>(d.readback.mapped());
+    double l1 = 0, ssim = 0, mse = 0;
+    for (uint32_t g = 0; g < d.groups; ++g) {
+        l1 += partials[g].l1;
+        ssim += partials[g].ssim;
+        mse += partials[g].mse;
+    }
+    LossValue value;
+    value.l1 = l1 / d.pixel_channels;
+    value.ssim = ssim / d.pixel_channels;
+    value.mse = mse / d.pixel_channels;
+    value.loss = (1.0 - d.ssim_weight) * value.l1 + d.ssim_weight * (1.0 - value.ssim);
+    return value;
+}
+
+uint64_t LossPasses::device_bytes() const { return impl_->planes.size() + impl_->partials.size(); }
+
+}  // namespace vksplat::train
