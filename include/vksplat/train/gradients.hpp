@@ -1,0 +1,28 @@
+#pragma once
+// The backward pass on its own: the gradient of a linear function of one rendered picture with
+// respect to every raw parameter of the scene. What the gradient tests check against finite
+// differences of the reference rasterizer, and a way for a caller's own loss (computed on the
+// host from the picture) to reach the parameters.
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/gpu/context.hpp"
+#include "vksplat/render_types.hpp"
+#include "vksplat/scene.hpp"
+
+namespace vksplat::train {
+
+struct RenderGradients {
+    RenderOutput image;      // rgb and alpha of the frame differentiated (no depth or statistics)
+    // dL/d parameter in the cloud's own arrays: positions, log_scales, rotations (of the raw,
+    // unnormalised quaternion), opacity_logits and sh, for L = sum over pixels p and channels c
+    // of weights[3 p + c] * rgb[3 p + c].
+    GaussianCloud gradient;
+};
+
+// Throws std::invalid_argument if weights is not 3 per pixel or the cloud needs sanitising (its
+// gradient would not line up with it); InputError for an invalid camera.
+RenderGradients render_gradients(const gpu::Context& context, const GaussianCloud& cloud, const Camera& camera,
+                                 const RenderSettings& settings, const std::vector<float>& weights);
+
+}  // namespace vksplat::train

@@ -1,0 +1,229 @@
+#version 460
+// Preprocess backward: one thread per Gaussian. From the gradients the blend backward gathered
+// for each splat (projected mean, conic, opacity, colour), the gradients of the raw parameters:
+// position, log-scales, quaternion, opacity logit and SH, through every step preprocess.comp and
+// train_activate.comp take (sigmoid, exp, quaternion normalisation, rotation and covariance,
+// EWA projection with its clamped Jacobian, the 0.3 px low-pass, the conic's inverse, the SH
+// colour with its clamp at 0 and its view direction). Exact derivatives of that forward: where
+// the Jacobian's lateral position is clamped it no longer moves with the position, so it passes
+// no gradient there. Gaussians the frame did not draw get zeros. Any non-finite gradient sets
+// STEP_NONFINITE in the step status, and Adam then skips the whole step.
+#extension GL_GOOGLE_include_directive : require
+
+#include "buffers.glsl"
+#include "constants.glsl"
+#include "frame.glsl"
+#include "sh.glsl"
+#include "train_layout.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(push_constant) uniform Push {
+    CameraBuffer camera;
+    Floats raw;          // parameters, train_layout.glsl
+    Uints visible;       // per Gaussian: 1 where the frame drew it
+    Floats splat_grads;  // SPLAT_GRAD_STRIDE per Gaussian
+    Floats grads;        // out: gradients of `raw`, same layout
+    Uints counters;      // the frame's counters
+    Uints status;        // [0]: STEP_ bits
+} pc;
+
+// Rotation matrix of a unit quaternion (w, x, y, z), as preprocess.comp builds it.
+mat3 rotation_matrix(vec4 q) {
+    const float r = q.x, x = q.y, y = q.z, z = q.w;
+    return transpose(mat3(
+        vec3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - r * z), 2.0 * (x * z + r * y)),
+        vec3(2.0 * (x * y + r * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - r * x)),
+        vec3(2.0 * (x * z - r * y), 2.0 * (y * z + r * x), 1.0 - 2.0 * (x * x + y * y))));
+}
+
+// d L / d (w, x, y, z) of a unit quaternion, from d L / d R (g[column][row], GLSL's order).
+vec4 rotation_backward(vec4 q, mat3 g) {
+    const float w = q.x, x = q.y, y = q.z, z = q.w;
+    // Row r, column c of the gradient.
+#define G(r, c) g[c][r]
+    return 2.0 * vec4(
+        -z * G(0, 1) + y * G(0, 2) + z * G(1, 0) - x * G(1, 2) - y * G(2, 0) + x * G(2, 1),
+        y * G(0, 1) + z * G(0, 2) + y * G(1, 0) - 2.0 * x * G(1, 1) - w * G(1, 2) + z * G(2, 0) + w * G(2, 1) -
+            2.0 * x * G(2, 2),
+        -2.0 * y * G(0, 0) + x * G(0, 1) + w * G(0, 2) + x * G(1, 0) + z * G(1, 2) - w * G(2, 0) + z * G(2, 1) -
+            2.0 * y * G(2, 2),
+        -2.0 * z * G(0, 0) - w * G(0, 1) + x * G(0, 2) + w * G(1, 0) - 2.0 * z * G(1, 1) + y * G(1, 2) +
+            x * G(2, 0) + y * G(2, 1));
+#undef G
+}
+
+// Adds the SH coefficients' gradients (written to `grads`) and returns d L / d direction.
+vec3 sh_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
+    const float x = dir.x, y = dir.y, z = dir.z;
+    float basis[16];
+    vec3 dbasis[16];  // d basis / d (x, y, z)
+    basis[0] = SH_C0;
+    dbasis[0] = vec3(0.0);
+    const uint count = (degree + 1u) * (degree + 1u);
+    if (degree > 0u) {
+        basis[1] = -SH_C1 * y; dbasis[1] = vec3(0.0, -SH_C1, 0.0);
+        basis[2] = SH_C1 * z;  dbasis[2] = vec3(0.0, 0.0, SH_C1);
+        basis[3] = -SH_C1 * x; dbasis[3] = vec3(-SH_C1, 0.0, 0.0);
+        if (degree > 1u) {
+            const float xx = x * x, yy = y * y, zz = z * z;
+            basis[4] = SH_C2[0] * x * y;              dbasis[4] = SH_C2[0] * vec3(y, x, 0.0);
+            basis[5] = SH_C2[1] * y * z;              dbasis[5] = SH_C2[1] * vec3(0.0, z, y);
+            basis[6] = SH_C2[2] * (2.0 * zz - xx - yy); dbasis[6] = SH_C2[2] * vec3(-2.0 * x, -2.0 * y, 4.0 * z);
+            basis[7] = SH_C2[3] * x * z;              dbasis[7] = SH_C2[3] * vec3(z, 0.0, x);
+            basis[8] = SH_C2[4] * (xx - yy);          dbasis[8] = SH_C2[4] * vec3(2.0 * x, -2.0 * y, 0.0);
+            if (degree > 2u) {
+                basis[9] = SH_C3[0] * y * (3.0 * xx - yy);
+                dbasis[9] = SH_C3[0] * vec3(6.0 * x * y, 3.0 * xx - 3.0 * yy, 0.0);
+                basis[10] = SH_C3[1] * x * y * z;
+                dbasis[10] = SH_C3[1] * vec3(y * z, x * z, x * y);
+                basis[11] = SH_C3[2] * y * (4.0 * zz - xx - yy);
+                dbasis[11] = SH_C3[2] * vec3(-2.0 * x * y, 4.0 * zz - xx - 3.0 * yy, 8.0 * y * z);
+                basis[12] = SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy);
+                dbasis[12] = SH_C3[3] * vec3(-6.0 * x * z, -6.0 * y * z, 6.0 * zz - 3.0 * xx - 3.0 * yy);
+                basis[13] = SH_C3[4] * x * (4.0 * zz - xx - yy);
+                dbasis[13] = SH_C3[4] * vec3(4.0 * zz - 3.0 * xx - yy, -2.0 * x * y, 8.0 * x * z);
+                basis[14] = SH_C3[5] * z * (xx - yy);
+                dbasis[14] = SH_C3[5] * vec3(2.0 * x * z, -2.0 * y * z, xx - yy);
+                basis[15] = SH_C3[6] * x * (xx - 3.0 * yy);
+                dbasis[15] = SH_C3[6] * vec3(3.0 * xx - 3.0 * yy, -6.0 * x * y, 0.0);
+            }
+        }
+    }
+    vec3 dl_ddir = vec3(0.0);
+    for (uint k = 0u; k < count; ++k) {
+        const uint at = base + 3u * k;
+        const vec3 coefficient = vec3(pc.raw.v[at], pc.raw.v[at + 1u], pc.raw.v[at + 2u]);
+        const vec3 grad = basis[k] * dl_dcolor;
+        pc.grads.v[at] = grad.r;
+        pc.grads.v[at + 1u] = grad.g;
+        pc.grads.v[at + 2u] = grad.b;
+        dl_ddir += dbasis[k] * dot(coefficient, dl_dcolor);
+    }
+    return dl_ddir;
+}
+
+void write_zeros(uint n, uint i, uint sh_floats) {
+    for (uint k = 0u; k < 3u; ++k) {
+        pc.grads.v[positions_offset(n) + 3u * i + k] = 0.0;
+        pc.grads.v[log_scales_offset(n) + 3u * i + k] = 0.0;
+    }
+    for (uint k = 0u; k < 4u; ++k) pc.grads.v[rotations_offset(n) + 4u * i + k] = 0.0;
+    pc.grads.v[opacities_offset(n) + i] = 0.0;
+    for (uint k = 0u; k < sh_floats; ++k) pc.grads.v[sh_offset(n) + sh_floats * i + k] = 0.0;
+}
+
+bool finite(float v) { return !isnan(v) && !isinf(v); }
+bool finite(vec3 v) { return finite(v.x) && finite(v.y) && finite(v.z); }
+
+void main() {
+    const CameraParams cam = pc.camera.c;
+    const uint n = cam.gaussian_count;
+    const uint sh_floats = 3u * cam.sh_stride;
+    if (gl_GlobalInvocationID.x == 0u && pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity)
+        atomicOr(pc.status.v[0], STEP_OVERFLOWED);
+    for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        if (pc.visible.v[i] == 0u) {
+            write_zeros(n, i, sh_floats);
+            continue;
+        }
+        const uint sg = i * SPLAT_GRAD_STRIDE;
+        const vec2 dl_dmean = vec2(pc.splat_grads.v[sg + SPLAT_GRAD_MEAN], pc.splat_grads.v[sg + SPLAT_GRAD_MEAN + 1u]);
+        const vec3 dl_dconic = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_CONIC], pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 1u],
+                                    pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 2u]);
+        const float dl_dopacity = pc.splat_grads.v[sg + SPLAT_GRAD_OPACITY];
+        vec3 dl_dcolor = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_COLOR], pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 1u],
+                              pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 2u]);
+
+        const uint po = positions_offset(n) + 3u * i, so = log_scales_offset(n) + 3u * i;
+        const uint ro = rotations_offset(n) + 4u * i, oo = opacities_offset(n) + i, sho = sh_offset(n) + sh_floats * i;
+        const vec3 p = vec3(pc.raw.v[po], pc.raw.v[po + 1u], pc.raw.v[po + 2u]);
+        const vec3 scale = exp(vec3(pc.raw.v[so], pc.raw.v[so + 1u], pc.raw.v[so + 2u]));
+        const vec4 q_raw = vec4(pc.raw.v[ro], pc.raw.v[ro + 1u], pc.raw.v[ro + 2u], pc.raw.v[ro + 3u]);
+        const float q_length = length(q_raw);
+        const vec4 q = q_raw / q_length;
+        const float opacity = 1.0 / (1.0 + exp(-pc.raw.v[oo]));
+
+        // Colour: SH + 0.5 clamped at 0 passes no gradient where it clamped.
+        const vec3 to_gaussian = p - cam.position.xyz;
+        const float distance = length(to_gaussian);
+        const vec3 dir = to_gaussian / distance;
+        const vec3 sh_color = eval_sh(Floats(pc.raw), false, sho, cam.sh_degree, dir) + COLOR_OFFSET;
+        dl_dcolor *= vec3(greaterThanEqual(sh_color, vec3(0.0)));
+        const vec3 dl_ddir = sh_backward(sho, cam.sh_degree, dir, dl_dcolor);
+        for (uint k = 3u * (cam.sh_degree + 1u) * (cam.sh_degree + 1u); k < sh_floats; ++k) pc.grads.v[sho + k] = 0.0;
+        vec3 dl_dp = (dl_ddir - dir * dot(dir, dl_ddir)) / distance;
+
+        // Projection of the mean.
+        const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
+        const vec3 view = world_to_view * p + vec3(cam.view_row0.w, cam.view_row1.w, cam.view_row2.w);
+        const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
+        const float z = view.z, z2 = z * z;
+        vec3 dl_dview = vec3(fx / z * dl_dmean.x, fy / z * dl_dmean.y,
+                             -fx * view.x / z2 * dl_dmean.x - fy * view.y / z2 * dl_dmean.y);
+
+        // Covariance: Sigma = M M^T with M = R S.
+        const mat3 rotation = rotation_matrix(q);
+        const mat3 m = rotation * mat3(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, scale.z);
+        const mat3 sigma = m * transpose(m);
+        // EWA, as preprocess.comp: the lateral positions are clamped before the Jacobian.
+        const float ux = view.x / z, uy = view.y / z;
+        const float ux_c = clamp(ux, -cam.jacobian_limits.x, cam.jacobian_limits.y);
+        const float uy_c = clamp(uy, -cam.jacobian_limits.z, cam.jacobian_limits.w);
+        const mat3 jacobian = transpose(mat3(vec3(fx / z, 0.0, -fx * ux_c / z), vec3(0.0, fy / z, -fy * uy_c / z),
+                                             vec3(0.0)));
+        const mat3 t = jacobian * world_to_view;
+        const mat3 cov = t * sigma * transpose(t);
+        const float a = cov[0][0] + LOW_PASS_FILTER, b = cov[1][0], c = cov[1][1] + LOW_PASS_FILTER;
+        const float det = a * c - b * b;
+        // Conic = inverse of [[a, b], [b, c]]: d L / d cov2 = -C G C with G the conic's gradient
+        // as a symmetric matrix (the off-diagonal scalar appears twice in the power).
+        const mat2 conic = mat2(c, -b, -b, a) / det;
+        const mat2 g_conic = mat2(dl_dconic.x, 0.5 * dl_dconic.y, 0.5 * dl_dconic.y, dl_dconic.z);
+        const mat2 g_cov2 = -(conic * g_conic * conic);
+        mat3 g_cov = mat3(0.0);
+        g_cov[0][0] = g_cov2[0][0];
+        g_cov[0][1] = g_cov2[0][1];
+        g_cov[1][0] = g_cov2[1][0];
+        g_cov[1][1] = g_cov2[1][1];
+        // cov = T Sigma T^T: d/dSigma = T^T G T, d/dT = 2 G T Sigma (G and Sigma symmetric).
+        const mat3 g_sigma = transpose(t) * g_cov * t;
+        const mat3 g_t = 2.0 * g_cov * t * sigma;
+        const mat3 g_jacobian = g_t * transpose(world_to_view);
+        // Jacobian entries (row, column) = g_jacobian[column][row].
+        const float g_j00 = g_jacobian[0][0], g_j11 = g_jacobian[1][1];
+        const float g_j02 = g_jacobian[2][0], g_j12 = g_jacobian[2][1];
+        const bool x_free = ux == ux_c, y_free = uy == uy_c;
+        dl_dview.z += g_j00 * (-fx / z2) + g_j11 * (-fy / z2);
+        // J02 = -fx ux_c / z, with ux_c = x / z where unclamped.
+        dl_dview.z += g_j02 * (fx * ux_c / z2) + g_j12 * (fy * uy_c / z2);
+        if (x_free) {
+            dl_dview.x += g_j02 * (-fx / z2);
+            dl_dview.z += g_j02 * (fx * view.x / (z2 * z));
+        }
+        if (y_free) {
+            dl_dview.y += g_j12 * (-fy / z2);
+            dl_dview.z += g_j12 * (fy * view.y / (z2 * z));
+        }
+        dl_dp += transpose(world_to_view) * dl_dview;
+
+        // Sigma = M M^T: d/dM = 2 G M; M = R diag(s): column k of M is s_k times column k of R.
+        const mat3 g_m = 2.0 * g_sigma * m;
+        const vec3 dl_dscale = vec3(dot(g_m[0], rotation[0]), dot(g_m[1], rotation[1]), dot(g_m[2], rotation[2]));
+        const mat3 g_rotation = mat3(g_m[0] * scale.x, g_m[1] * scale.y, g_m[2] * scale.z);
+        const vec4 dl_dq = rotation_backward(q, g_rotation);
+        const vec4 dl_dq_raw = (dl_dq - q * dot(q, dl_dq)) / q_length;
+        const vec3 dl_dlog_scale = dl_dscale * scale;
+        const float dl_dlogit = dl_dopacity * opacity * (1.0 - opacity);
+
+        for (uint k = 0u; k < 3u; ++k) {
+            pc.grads.v[po + k] = dl_dp[k];
+            pc.grads.v[so + k] = dl_dlog_scale[k];
+        }
+        for (uint k = 0u; k < 4u; ++k) pc.grads.v[ro + k] = dl_dq_raw[k];
+        pc.grads.v[oo] = dl_dlogit;
+        if (!finite(dl_dp) || !finite(dl_dlog_scale) || !finite(dl_dq_raw.xyz) || !finite(dl_dq_raw.w) ||
+            !finite(dl_dlogit) || !finite(dl_dcolor) || !finite(dl_ddir))
+            atomicOr(pc.status.v[0], STEP_NONFINITE);
+    }
+}

@@ -1,0 +1,63 @@
+#pragma once
+// DifferentiableRenderer: the renderer's frame on a TrainableScene, keeping what the backward pass
+// needs, and that backward pass. Forward: activation -> TileBinning -> blend_train (the picture,
+// and per pixel the final transmittance and where its list walk ended). Backward, from dL/d rgb
+// per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour) ->
+// preprocess_backward (gradients of every raw parameter). Both are recorded into the caller's
+// command stream, so a training step is one submission.
+#include <cstdint>
+#include <memory>
+
+#include "gpu/buffer.hpp"
+#include "gpu/command_stream.hpp"
+#include "gpu/compute_pipeline.hpp"
+#include "render/frame_layout.hpp"
+#include "render/frame_resources.hpp"
+#include "render/tile_binning.hpp"
+#include "train/trainable_scene.hpp"
+
+namespace vksplat::train {
+
+class DifferentiableRenderer {
+public:
+    explicit DifferentiableRenderer(const gpu::Context& context);
+
+    // Sizes the buffers for the scene and the image (keeps them where they suffice). Tile entries
+    // start at a few per Gaussian and grow through grow_entries().
+    void ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles);
+    void grow_entries(uint32_t needed);
+    uint32_t entry_capacity() const { return frame_.entry_capacity; }
+
+    // The forward frame of `scene` with `params` (its gaussian_count, sh_degree and entry
+    // capacity filled in by the caller): leaves colour and alpha in color_alpha().
+    void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params);
+    // The gradients of every raw parameter into scene.grads, from dL/d rgb per pixel (vec4, at
+    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits.
+    void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad);
+    // Copies the frame counters and the step status to the host-visible readback (after the
+    // submission: counters(), status()).
+    void record_readback(gpu::CommandStream& stream);
+    uint32_t entries_needed() const;
+    uint32_t visible() const;
+    uint32_t status() const;
+
+    const gpu::Buffer& color_alpha() const { return frame_.color_alpha; }
+    const gpu::Buffer& status_buffer() const { return status_; }
+    const gpu::Buffer& splat_grads() const { return splat_grads_; }
+    // Device bytes its buffers hold.
+    uint64_t device_bytes() const;
+
+private:
+    const gpu::Context& context_;
+    render::TileBinning binning_;
+    gpu::ComputePipeline activate_, blend_, blend_backward_, preprocess_backward_;
+    render::FrameResources frame_;
+    uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
+    uint32_t pixel_capacity_ = 0;
+    gpu::Buffer render_params_, splat_grads_;      // per Gaussian
+    gpu::Buffer transmittance_, last_;             // per pixel
+    gpu::Buffer status_, readback_;
+    uint32_t tiles_x_ = 0, tiles_y_ = 0;
+};
+
+}  // namespace vksplat::train

@@ -1,0 +1,72 @@
+#include "train/trainable_scene.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "gpu/command_stream.hpp"
+#include "gpu/transfer.hpp"
+#include "vksplat/error.hpp"
+
+namespace vksplat::train {
+namespace {
+
+ParameterLayout layout_of(size_t count, int sh_degree) {
+    return {static_cast<uint32_t>(count), static_cast<uint32_t>(sh_coefficients_for_degree(sh_degree))};
+}
+
+}  // namespace
+
+std::vector<float> pack_parameters(const GaussianCloud& cloud) {
+    const ParameterLayout layout = layout_of(cloud.size(), cloud.sh_degree);
+    std::vector<float> packed(layout.total());
+    std::copy(cloud.positions.begin(), cloud.positions.end(), packed.begin() + layout.positions());
+    std::copy(cloud.log_scales.begin(), cloud.log_scales.end(), packed.begin() + layout.log_scales());
+    std::copy(cloud.rotations.begin(), cloud.rotations.end(), packed.begin() + layout.rotations());
+    std::copy(cloud.opacity_logits.begin(), cloud.opacity_logits.end(), packed.begin() + layout.opacities());
+    std::copy(cloud.sh.begin(), cloud.sh.end(), packed.begin() + layout.sh());
+    return packed;
+}
+
+GaussianCloud unpack_parameters(const std::vector<float>& packed, uint32_t count, int sh_degree) {
+    const ParameterLayout layout = layout_of(count, sh_degree);
+    GaussianCloud cloud;
+    cloud.sh_degree = sh_degree;
+    cloud.resize(count);
+    const auto copy = [&](uint64_t offset, std::vector<float>& out) {
+        std::copy(packed.begin() + offset, packed.begin() + offset + out.size(), out.begin());
+    };
+    copy(layout.positions(), cloud.positions);
+    copy(layout.log_scales(), cloud.log_scales);
+    copy(layout.rotations(), cloud.rotations);
+    copy(layout.opacities(), cloud.opacity_logits);
+    copy(layout.sh(), cloud.sh);
+    return cloud;
+}
+
+TrainableScene TrainableScene::upload(const gpu::Context& context, const GaussianCloud& cloud) {
+    cloud.check_consistent();
+    if (cloud.empty()) throw InputError("scene", "has no Gaussians to train");
+    if (cloud.size() * layout_of(1, cloud.sh_degree).floats_per_gaussian() > std::numeric_limits<uint32_t>::max())
+        throw InputError("scene", "too many Gaussians to train in one scene (" + std::to_string(cloud.size()) + ")");
+    TrainableScene scene;
+    scene.layout = layout_of(cloud.size(), cloud.sh_degree);
+    scene.sh_degree = cloud.sh_degree;
+    scene.params = gpu::upload_buffer(context, pack_parameters(cloud), "trained parameters");
+    const uint64_t bytes = scene.layout.total() * sizeof(float);
+    scene.grads = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "parameter gradients");
+    scene.first_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam first moments");
+    scene.second_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam second moments");
+    gpu::CommandStream stream(context, 0);
+    stream.begin();
+    stream.fill(scene.grads, 0);
+    stream.fill(scene.first_moment, 0);
+    stream.fill(scene.second_moment, 0);
+    stream.submit_and_wait();
+    return scene;
+}
+
+GaussianCloud TrainableScene::download(const gpu::Context& context, const gpu::Buffer& buffer) const {
+    return unpack_parameters(gpu::read_buffer<float>(context, buffer, layout.total()), layout.count, sh_degree);
+}
+
+}  // namespace vksplat::train

@@ -1,0 +1,31 @@
+#pragma once
+// TrainableScene: a scene's raw parameters on the device in the trainer's layout
+// (parameter_layout.hpp), with their gradients and Adam's two moments laid out the same.
+#include <cstdint>
+#include <vector>
+
+#include "gpu/buffer.hpp"
+#include "train/parameter_layout.hpp"
+#include "vksplat/scene.hpp"
+
+namespace vksplat::train {
+
+struct TrainableScene {
+    ParameterLayout layout;
+    int sh_degree = 0;
+    gpu::Buffer params, grads, first_moment, second_moment;
+
+    // Uploads a consistent cloud (the caller sanitises it); the moments start at zero.
+    static TrainableScene upload(const gpu::Context& context, const GaussianCloud& cloud);
+    // The parameters (or any buffer of this layout) as a cloud.
+    GaussianCloud download(const gpu::Context& context, const gpu::Buffer& buffer) const;
+    GaussianCloud download(const gpu::Context& context) const { return download(context, params); }
+    uint64_t device_bytes() const { return params.size() * 4; }
+    VkDeviceAddress sh_address() const { return params.address() + layout.sh() * sizeof(float); }
+};
+
+// The cloud's arrays in the trainer's layout, and back.
+std::vector<float> pack_parameters(const GaussianCloud& cloud);
+GaussianCloud unpack_parameters(const std::vector<float>& packed, uint32_t count, int sh_degree);
+
+}  // namespace vksplat::train
