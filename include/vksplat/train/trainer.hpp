@@ -1,0 +1,124 @@
+#pragma once
+// Trainer: fits a scene's parameters to photos on the GPU, one view per step, with the reference
+// 3DGS trainer's loss and optimiser (Kerbl et al. 2023, gaussian-splatting train.py):
+//   loss = (1 - lambda) L1 + lambda (1 - SSIM), lambda = 0.2, on the rendered picture against the photo;
+//   Adam over positions, log-scales, quaternions, opacity logits and SH, each group at its own rate.
+// A step is one submission: forward frame, loss, backward passes, Adam.
+//
+//   gpu::Context context;
+//   train::Trainer trainer(context, cloud, options);
+//   for (...) trainer.step(cameras[v], photos[v]);
+//   io::write_scene(out, trainer.cloud());
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/gpu/context.hpp"
+#include "vksplat/io/write_mode.hpp"
+#include "vksplat/render/renderer.hpp"
+#include "vksplat/scene.hpp"
+
+namespace vksplat::io {
+struct ImageRGB;
+}
+
+namespace vksplat::train {
+
+// The reference trainer's rates (arguments/__init__.py, OptimizationParams). Position rates are
+// multiplied by TrainOptions::scene_extent, as the reference scales them by its cameras' extent.
+struct LearningRates {
+    double position_initial = 0.00016;
+    double position_final = 0.0000016;
+    int position_decay_steps = 30000;  // exponential (log-linear) decay from initial to final
+    double sh_dc = 0.0025;             // feature_lr
+    double sh_rest = 0.0025 / 20.0;    // feature_lr / 20
+    double opacity = 0.025;
+    double scale = 0.005;
+    double rotation = 0.001;
+};
+
+enum class PositionSchedule {
+    decay,       // the reference's schedule from position_initial to position_final (training)
+    final_rate,  // position_final throughout (re-fitting a trained scene)
+};
+
+struct TrainOptions {
+    LearningRates rates;
+    PositionSchedule position_schedule = PositionSchedule::decay;
+    double scene_extent = 1.0;           // see scene_extent() in vksplat/train/scene_extent.hpp
+    double ssim_weight = 0.2;            // lambda_dssim
+    std::array<float, 3> background{0.0f, 0.0f, 0.0f};
+    int sh_degree = 3;                   // SH bands evaluated (capped at the scene's degree)
+};
+
+// A photo as the loss reads it: RGBA8 per pixel, r in the low byte, row-major, top row first.
+// Alpha 0 masks a pixel out of the loss (it neither counts nor pulls); any other alpha counts.
+struct Photo {
+    int width = 0;
+    int height = 0;
+    std::vector<uint32_t> rgba;
+
+    // Every pixel counts; colours rounded to 8 bits (the photos are 8-bit already).
+    static Photo from_image(const io::ImageRGB& image);
+    // Pixels whose mask value is 0 are masked out; mask has width * height entries.
+    static Photo from_image(const io::ImageRGB& image, const std::vector<uint8_t>& mask);
+};
+
+struct StepResult {
+    bool applied = true;     // false: a gradient was not finite and Adam skipped the step
+    double loss = 0;         // (1 - lambda) l1 + lambda (1 - ssim)
+    double l1 = 0;
+    double ssim = 0;
+    double psnr = 0;         // of the render against the photo (counted pixels; +inf if equal)
+    uint32_t visible = 0;    // splats drawn
+    uint32_t tile_entries = 0;
+    uint32_t attempts = 1;   // > 1 when the tile-entry buffers grew and the step re-ran
+    std::vector<StageTiming> stages;  // GPU time per pass (Vulkan timestamps)
+    double gpu_milliseconds = 0;
+};
+
+class Trainer {
+public:
+    // Sanitises a copy of `initial` (see sanitize(); dropped Gaussians are gone from cloud()) and
+    // uploads it with Adam's moments at zero. Throws InputError for an empty scene.
+    Trainer(const gpu::Context& context, const GaussianCloud& initial, const TrainOptions& options);
+    // Continues from a checkpoint (save_checkpoint): parameters, moments and the iteration count.
+    // Throws InputError naming the file if it is not a vksplat checkpoint or is truncated.
+    Trainer(const gpu::Context& context, const std::filesystem::path& checkpoint, const TrainOptions& options);
+    ~Trainer();
+    Trainer(const Trainer&) = delete;
+    Trainer& operator=(const Trainer&) = delete;
+
+    // One iteration: render `camera`, compare with `photo`, back-propagate, Adam. Throws
+    // InputError if the photo's size is not the camera's.
+    StepResult step(const Camera& camera, const Photo& photo);
+
+    // Steps taken (applied or skipped), and of those skipped for non-finite gradients.
+    uint64_t iteration() const;
+    uint64_t skipped_steps() const;
+    // The position learning rate the next step uses.
+    double position_learning_rate() const;
+    // SH bands evaluated from the next step on (the trainer raises it as training goes).
+    void set_sh_degree(int degree);
+
+    const SanitizeReport& sanitize_report() const;
+    size_t size() const;
+    // The current parameters (read back from the device).
+    GaussianCloud cloud() const;
+    // Device memory its buffers hold (scene, gradients, moments, frame, loss).
+    uint64_t device_bytes() const;
+
+    // Writes parameters, moments and counters through io::write_file_atomically, so an
+    // interrupted write leaves the previous checkpoint intact.
+    void save_checkpoint(const std::filesystem::path& path, io::WriteMode mode = io::WriteMode::overwrite) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vksplat::train

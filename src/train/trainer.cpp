@@ -1,0 +1,268 @@
+#include "vksplat/train/trainer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <limits>
+
+#include "gpu/buffer.hpp"
+#include "gpu/command_stream.hpp"
+#include "gpu/transfer.hpp"
+#include "render/frame_layout.hpp"
+#include "train/differentiable_renderer.hpp"
+#include "train/loss_passes.hpp"
+#include "train/train_passes.hpp"
+#include "train/trainable_scene.hpp"
+#include "shaders/adam_step.spv.h"
+#include "vksplat/error.hpp"
+#include "vksplat/io/image.hpp"
+
+namespace vksplat::train {
+namespace {
+
+// torch.optim.Adam's defaults but for epsilon, which the reference sets to 1e-15.
+constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kEpsilon = 1e-15f;
+// Steps an overflowing view may be re-run with grown tile-entry buffers before giving up.
+constexpr uint32_t kMaxAttempts = 8;
+
+constexpr char kCheckpointMagic[8] = {'V', 'K', 'S', 'C', 'K', 'P', 'T', '1'};
+
+uint32_t pack_rgba8(float r, float g, float b, uint8_t alpha) {
+    const auto byte = [](float v) {
+        return static_cast<uint32_t>(std::lround(std::clamp(std::isnan(v) ? 0.0f : v, 0.0f, 1.0f) * 255.0f));
+    };
+    return byte(r) | (byte(g) << 8) | (byte(b) << 16) | (uint32_t(alpha) << 24);
+}
+
+double psnr_from_mse(double mse) { return mse > 0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity(); }
+
+}  // namespace
+
+Photo Photo::from_image(const io::ImageRGB& image) {
+    return from_image(image, std::vector<uint8_t>(size_t(image.width) * image.height, 255));
+}
+
+Photo Photo::from_image(const io::ImageRGB& image, const std::vector<uint8_t>& mask) {
+    const size_t pixels = size_t(image.width) * image.height;
+    if (image.rgb.size() != pixels * 3 || mask.size() != pixels)
+        throw std::invalid_argument("Photo::from_image: image and mask sizes disagree");
+    Photo photo{image.width, image.height, std::vector<uint32_t>(pixels)};
+    for (size_t i = 0; i < pixels; ++i)
+        photo.rgba[i] = pack_rgba8(image.rgb[3 * i], image.rgb[3 * i + 1], image.rgb[3 * i + 2], mask[i] ? 255 : 0);
+    return photo;
+}
+
+struct Trainer::Impl {
+    const gpu::Context& context;
+    TrainOptions options;
+    SanitizeReport report;
+    TrainableScene scene;
+    DifferentiableRenderer renderer;
+    LossPasses loss;
+    gpu::ComputePipeline adam;
+    gpu::CommandStream stream;
+    gpu::Buffer photo_upload, photo, pixel_grad;
+    uint32_t pixel_capacity = 0;
+    uint64_t iteration = 0, skipped = 0;
+    int sh_degree = 3;
+
+    Impl(const gpu::Context& c, const TrainOptions& o)
+        : context(c),
+          options(o),
+          renderer(c),
+          loss(c),
+          adam(c, gpu::spirv_words(adam_step_spv), sizeof(AdamPush), {}, "adam_step"),
+          stream(c),
+          sh_degree(o.sh_degree) {}
+
+    void ensure_pixels(uint32_t pixels) {
+        if (pixels <= pixel_capacity) return;
+        photo_upload = gpu::Buffer();
+        photo_upload = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
+        photo = gpu::Buffer();
+        photo = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::device, "photo");
+        pixel_grad = gpu::Buffer();
+        pixel_grad = gpu::Buffer(context, uint64_t(pixels) * 16, gpu::MemoryKind::device, "pixel gradients");
+        pixel_capacity = pixels;
+    }
+
+    double position_rate() const {
+        const auto& r = options.rates;
+        if (options.position_schedule == PositionSchedule::final_rate) return r.position_final * options.scene_extent;
+        // The reference's get_expon_lr_func (without its delay, which the reference leaves off).
+        const double t = std::clamp(double(iteration) / std::max(r.position_decay_steps, 1), 0.0, 1.0);
+        return std::exp(std::log(r.position_initial) * (1 - t) + std::log(r.position_final) * t) * options.scene_extent;
+    }
+
+    AdamPush adam_push() const {
+        const auto& r = options.rates;
+        const double t = double(iteration + 1);
+        return {scene.params.address(),
+                scene.grads.address(),
+                scene.first_moment.address(),
+                scene.second_moment.address(),
+                renderer.status_buffer().address(),
+                scene.layout.count,
+                scene.layout.sh_coefficients * 3,
+                static_cast<float>(position_rate()),
+                static_cast<float>(r.scale),
+                static_cast<float>(r.rotation),
+                static_cast<float>(r.opacity),
+                static_cast<float>(r.sh_dc),
+                static_cast<float>(r.sh_rest),
+                kBeta1,
+                kBeta2,
+                kEpsilon,
+                static_cast<float>(1.0 - std::pow(double(kBeta1), t)),
+                static_cast<float>(1.0 - std::pow(double(kBeta2), t))};
+    }
+
+    StepResult step(const Camera& camera, const Photo& target);
+    void load_checkpoint(const std::filesystem::path& path);
+};
+
+StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
+    camera.validate();
+    if (target.width != camera.width || target.height != camera.height ||
+        target.rgba.size() != size_t(target.width) * target.height)
+        throw InputError("photo of camera '" + camera.name + "'",
+                         "is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
+                             " but the camera is " + std::to_string(camera.width) + "x" +
+                             std::to_string(camera.height));
+    const auto [pixels, tiles] = render::image_extent(camera);
+    const uint32_t n = scene.layout.count;
+    renderer.ensure(n, pixels, tiles);
+    ensure_pixels(pixels);
+    std::memcpy(photo_upload.mapped(), target.rgba.data(), uint64_t(pixels) * 4);
+
+    RenderSettings settings;
+    settings.background = options.background;
+    settings.max_sh_degree = sh_degree;
+    StepResult result;
+    for (result.attempts = 1;; ++result.attempts) {
+        const auto params =
+            render::make_camera_params(camera, settings, n, scene.sh_degree, false, renderer.entry_capacity());
+        stream.begin();
+        stream.copy(photo_upload, photo, uint64_t(pixels) * 4);
+        renderer.record_forward(stream, scene, params);
+        loss.record(stream, {renderer.color_alpha().address(), photo.address(), pixel_grad.address(),
+                             uint32_t(camera.width), uint32_t(camera.height), float(options.ssim_weight)});
+        stream.barrier();
+        stream.mark("loss");
+        renderer.record_backward(stream, scene, pixel_grad.address());
+        record_adam(stream, adam, adam_push(), scene.layout.total());
+        stream.barrier();
+        stream.mark("adam");
+        renderer.record_readback(stream);
+        stream.barrier_before_host_read();
+        stream.submit_and_wait();
+        if ((renderer.status() & kStepOverflowed) == 0) break;
+        if (result.attempts == kMaxAttempts)
+            throw GpuError("view '" + camera.name + "' still needs more tile entries after " +
+                           std::to_string(kMaxAttempts) + " attempts");
+        renderer.grow_entries(renderer.entries_needed());
+    }
+    ++iteration;
+    result.applied = (renderer.status() & kStepNonfinite) == 0;
+    if (!result.applied) ++skipped;
+    const LossValue value = loss.last();
+    result.loss = value.loss;
+    result.l1 = value.l1;
+    result.ssim = value.ssim;
+    result.psnr = psnr_from_mse(value.mse);
+    result.visible = renderer.visible();
+    result.tile_entries = renderer.entries_needed();
+    for (const auto& t : stream.stage_times()) {
+        result.stages.push_back({t.label, t.milliseconds});
+        result.gpu_milliseconds += t.milliseconds;
+    }
+    return result;
+}
+
+Trainer::Trainer(const gpu::Context& context, const GaussianCloud& initial, const TrainOptions& options)
+    : impl_(std::make_unique<Impl>(context, options)) {
+    GaussianCloud copy = initial;
+    impl_->report = sanitize(copy);
+    impl_->scene = TrainableScene::upload(context, copy);
+}
+
+Trainer::Trainer(const gpu::Context& context, const std::filesystem::path& checkpoint, const TrainOptions& options)
+    : impl_(std::make_unique<Impl>(context, options)) {
+    impl_->load_checkpoint(checkpoint);
+}
+
+Trainer::~Trainer() = default;
+
+StepResult Trainer::step(const Camera& camera, const Photo& photo) { return impl_->step(camera, photo); }
+uint64_t Trainer::iteration() const { return impl_->iteration; }
+uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
+double Trainer::position_learning_rate() const { return impl_->position_rate(); }
+void Trainer::set_sh_degree(int degree) { impl_->sh_degree = std::clamp(degree, 0, 3); }
+const SanitizeReport& Trainer::sanitize_report() const { return impl_->report; }
+size_t Trainer::size() const { return impl_->scene.layout.count; }
+GaussianCloud Trainer::cloud() const { return impl_->scene.download(impl_->context); }
+
+uint64_t Trainer::device_bytes() const {
+    const auto& d = *impl_;
+    return d.scene.device_bytes() + d.renderer.device_bytes() + d.loss.device_bytes() + d.photo.size() +
+           d.pixel_grad.size();
+}
+
+// Checkpoint file: magic, then uint64 count, sh degree, iteration, skipped steps, then the
+// parameters, first and second moments as float32 arrays in the trainer's layout, little-endian
+// as the machine writes them (checkpoints are for resuming on the same kind of machine).
+void Trainer::save_checkpoint(const std::filesystem::path& path, io::WriteMode mode) const {
+    const auto& d = *impl_;
+    const uint64_t floats = d.scene.layout.total();
+    const auto params = gpu::read_buffer<float>(d.context, d.scene.params, floats);
+    const auto first = gpu::read_buffer<float>(d.context, d.scene.first_moment, floats);
+    const auto second = gpu::read_buffer<float>(d.context, d.scene.second_moment, floats);
+    io::write_file_atomically(path, mode, [&](std::ostream& out) {
+        out.write(kCheckpointMagic, sizeof(kCheckpointMagic));
+        const uint64_t header[4] = {d.scene.layout.count, uint64_t(d.scene.sh_degree), d.iteration, d.skipped};
+        out.write(reinterpret_cast<const char*>(header), sizeof(header));
+        for (const auto* array : {&params, &first, &second})
+            out.write(reinterpret_cast<const char*>(array->data()), std::streamsize(floats * sizeof(float)));
+    });
+}
+
+void Trainer::Impl::load_checkpoint(const std::filesystem::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path.string(), "cannot open the checkpoint");
+    char magic[sizeof(kCheckpointMagic)];
+    uint64_t header[4];
+    if (!in.read(magic, sizeof(magic)) || std::memcmp(magic, kCheckpointMagic, sizeof(magic)) != 0)
+        throw InputError(path.string(), "not a vksplat training checkpoint");
+    if (!in.read(reinterpret_cast<char*>(header), sizeof(header)))
+        throw InputError(path.string(), "truncated checkpoint header");
+    if (header[0] == 0 || header[0] > std::numeric_limits<uint32_t>::max() || header[1] > 3)
+        throw InputError(path.string(), "checkpoint header is corrupt (count " + std::to_string(header[0]) +
+                                            ", SH degree " + std::to_string(header[1]) + ")");
+    const ParameterLayout layout{static_cast<uint32_t>(header[0]),
+                                 static_cast<uint32_t>(sh_coefficients_for_degree(int(header[1])))};
+    const uint64_t floats = layout.total();
+    std::vector<float> arrays[3];
+    for (auto& array : arrays) {
+        array.resize(floats);
+        if (!in.read(reinterpret_cast<char*>(array.data()), std::streamsize(floats * sizeof(float))))
+            throw InputError(path.string(), "truncated checkpoint (" + std::to_string(header[0]) +
+                                                " Gaussians expected)");
+    }
+    GaussianCloud cloud = unpack_parameters(arrays[0], layout.count, int(header[1]));
+    scene = TrainableScene::upload(context, cloud);
+    const auto upload_into = [&](const gpu::Buffer& destination, const std::vector<float>& values) {
+        gpu::Buffer staged = gpu::upload_buffer(context, values, "checkpoint moments");
+        gpu::CommandStream copy(context, 0);
+        copy.begin();
+        copy.copy(staged, destination, floats * sizeof(float));
+        copy.submit_and_wait();
+    };
+    upload_into(scene.first_moment, arrays[1]);
+    upload_into(scene.second_moment, arrays[2]);
+    iteration = header[2];
+    skipped = header[3];
+    report.input_count = layout.count;
+}
+
+}  // namespace vksplat::train
