@@ -16,9 +16,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// INRIA's trainer holds out the first 13 cameras of its test set.
-constexpr size_t kInriaTestViews = 13;
-
 // A file the job will write: checked before the work, so that minutes of rendering are not lost
 // to a refusal at the end (the writers check again).
 void check_writable(const fs::path& path, io::WriteMode mode) {
@@ -43,12 +40,8 @@ void check_options(const PruneOptions& options) {
         throw InputError("--threshold", "must be a number");
     if (const auto* budget = std::get_if<prune::QualityBudget>(&options.selector); budget && !(budget->max_psnr_drop >= 0))
         throw InputError("--max-psnr-drop " + std::to_string(budget->max_psnr_drop), "must be 0 or more (dB)");
-}
-
-void check_views(const std::vector<size_t>& views, size_t camera_count) {
-    for (size_t view : views)
-        if (view >= camera_count)
-            throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
+    if (options.recover && !options.images_dir)
+        throw InputError("--recover", "re-fits to the photos: give them with --images");
 }
 
 // The scores, the Gaussians still in play after the lossless pass, and the totals behind both
@@ -106,22 +99,46 @@ prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCl
     return result.budget->keep;
 }
 
+// Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
+// measured; otherwise the selector's count is reached in the rounds asked for.
+GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
+                      const std::vector<Camera>& cameras, const Scored& scored, const prune::TestViews& targets,
+                      const PruneOptions& options, const PruneProgress& progress) {
+    RecoverOptions recover = *options.recover;
+    recover.method = options.method;
+    recover.finetune.test_views = result.test_views;
+    recover.finetune.train_views = result.train_views;
+    recover.finetune.train.background = options.settings.background;
+    const PhotoSource photos = photos_in_folder(*options.images_dir, options.settings.background);
+    const gpu::Context& context = renderer.context();
+    const prune::Ranking ranking(scored.scores, scored.candidates);
+    const auto report = [&](int round, const FinetuneStatus& status) {
+        if (progress.refit) progress.refit(round, status);
+    };
+    if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
+        if (recover.rounds != 1)
+            throw InputError("--rounds " + std::to_string(recover.rounds),
+                             "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
+        prune::QualityBudget refitted = *budget;
+        FinetuneOptions finetune = recover.finetune;
+        finetune.iterations = recover.iterations;
+        refitted.refit = [&](const GaussianCloud& model) {
+            return finetune_scene(context, model, cameras, photos, finetune, {},
+                                  [&](const FinetuneStatus& s) { report(1, s); })
+                .cloud;
+        };
+        result.budget = prune::fit_quality_budget(renderer, cloud, ranking, targets, refitted, options.settings,
+                                                  progress.probe);
+        return result.budget->model ? std::move(*result.budget->model) : cloud.subset(result.budget->keep);
+    }
+    const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
+    RecoverResult recovered = prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos, recover,
+                                                {}, report);
+    for (const auto& round : recovered.rounds) result.recover_rounds.push_back(round.kept);
+    return std::move(recovered.cloud);
+}
+
 }  // namespace
-
-std::vector<size_t> default_test_views(size_t camera_count) {
-    std::vector<size_t> views(camera_count > kInriaTestViews ? kInriaTestViews : camera_count);
-    for (size_t i = 0; i < views.size(); ++i) views[i] = i;
-    return views;
-}
-
-std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views) {
-    std::vector<size_t> views;
-    for (size_t i = 0; i < camera_count; ++i)
-        if (std::find(test_views.begin(), test_views.end(), i) == test_views.end()) views.push_back(i);
-    if (views.empty())
-        for (size_t i = 0; i < camera_count; ++i) views.push_back(i);
-    return views;
-}
 
 PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const std::vector<Camera>& cameras,
                         const PruneOptions& options, const PruneProgress& progress) {
@@ -130,8 +147,8 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
     result.train_views =
         options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
-    check_views(result.test_views, cameras.size());
-    check_views(result.train_views, cameras.size());
+    check_view_indices(result.test_views, cameras.size());
+    check_view_indices(result.train_views, cameras.size());
 
     // Sanitised once here, so that scores, masks and the output all index the same Gaussians.
     GaussianCloud cloud = input;
@@ -160,9 +177,14 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
 
     // From here on the scene is at the degree asked for: what every selector cuts down.
     if (options.sh_degree && *options.sh_degree < cloud.sh_degree) cloud = cloud.with_sh_degree(*options.sh_degree);
-    GaussianCloud pruned = cloud.subset(select(result, renderer, cloud, scored, targets, options, progress));
-    if (result.budget && result.budget->sh_degree < pruned.sh_degree)
-        pruned = pruned.with_sh_degree(result.budget->sh_degree);
+    GaussianCloud pruned;
+    if (!options.recover) {
+        pruned = cloud.subset(select(result, renderer, cloud, scored, targets, options, progress));
+        if (result.budget && result.budget->sh_degree < pruned.sh_degree)
+            pruned = pruned.with_sh_degree(result.budget->sh_degree);
+    } else {
+        pruned = recover(result, renderer, cloud, cameras, scored, targets, options, progress);
+    }
     result.sh_degree_after = pruned.sh_degree;
     result.count_after = pruned.size();
     result.bytes_after = pruned.ply_bytes();

@@ -1,5 +1,6 @@
 #include "vksplat/jobs/view_selection.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <numeric>
 
@@ -7,6 +8,9 @@
 
 namespace vksplat::jobs {
 namespace {
+
+// INRIA's trainer holds out the first 13 cameras of its test set.
+constexpr size_t kInriaTestViews = 13;
 
 size_t parse_index(const std::string& text, const std::string& whole) {
     size_t value = 0;
@@ -41,6 +45,27 @@ std::vector<size_t> parse_view_list(const std::string& text, size_t count) {
         start = comma + 1;
     }
     return views;
+}
+
+std::vector<size_t> default_test_views(size_t camera_count) {
+    std::vector<size_t> views(camera_count > kInriaTestViews ? kInriaTestViews : camera_count);
+    for (size_t i = 0; i < views.size(); ++i) views[i] = i;
+    return views;
+}
+
+std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views) {
+    std::vector<size_t> views;
+    for (size_t i = 0; i < camera_count; ++i)
+        if (std::find(test_views.begin(), test_views.end(), i) == test_views.end()) views.push_back(i);
+    if (views.empty())
+        for (size_t i = 0; i < camera_count; ++i) views.push_back(i);
+    return views;
+}
+
+void check_view_indices(const std::vector<size_t>& views, size_t camera_count) {
+    for (size_t view : views)
+        if (view >= camera_count)
+            throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
 }
 
 }  // namespace vksplat::jobs

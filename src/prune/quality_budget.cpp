@@ -38,6 +38,7 @@ BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, 
         const auto start = std::chrono::steady_clock::now();
         GaussianCloud model = cloud.subset(ranking.keep_best(kept));
         if (sh_degree != model.sh_degree) model = model.with_sh_degree(sh_degree);
+        if (budget.refit) model = budget.refit(model);
         const Quality quality = measure_quality(renderer, model, views, settings, false);
         BudgetProbe p;
         p.kept = kept;
@@ -48,6 +49,7 @@ BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, 
         p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         result.probes.push_back(p);
         if (on_probe) on_probe(p);
+        if (budget.refit && p.meets) result.model = std::move(model);  // bisection: the last that meets is chosen
         return p;
     };
 

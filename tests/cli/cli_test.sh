@@ -154,6 +154,43 @@ expect missing-camera-file any-failure "does not exist" -- "$vksplat" render "$w
 sed 's/"fx": 70/"fx": 0/' "$work/cameras.json" >"$work/zero_focal.json"
 expect zero-focal 2 "zero_focal.json" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
 expect zero-focal-says-so 2 "camera 0 ('top'): focal length (0.000000, 70.000000) must be positive" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
+# Finetune: a short re-fit to photos of the demo (the three views above, rendered), the refusals,
+# and Ctrl-C: the run stops with its checkpoint and no output, and --resume finishes it.
+expect photos-of-three 0 "wrote 3 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/three.json" \
+  --out "$work/photos3" --background 1,1,1
+expect finetune 0 "test views (3) against the photos: PSNR" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos3" --background 1,1,1 --iters 10 --quiet -o "$work/refit.ply"
+expect finetune-refuses-overwrite 2 "refit.ply: already exists" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos3" --iters 10 -o "$work/refit.ply"
+expect finetune-missing-photo 2 "'a'" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos" --iters 10 -o "$work/refit_missing.ply"
+sed 's/"width": 80/"width": 81/' "$work/three.json" >"$work/three_wider.json"
+expect finetune-wrong-size 2 "photo is 80x60 but camera 'a' renders 81x60" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three_wider.json" --images "$work/photos3" --iters 10 -o "$work/refit_wide.ply"
+expect finetune-resume-nothing 2 "no checkpoint to resume from" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos3" --iters 10 --resume -o "$work/refit_none.ply"
+"$vksplat" finetune "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" --iters 100000 \
+  --checkpoint-every 5 --quiet -o "$work/refit_stopped.ply" >"$work/stopped.log" 2>&1 &
+finetune_pid=$!
+for _ in $(seq 1 600); do [ -f "$work/refit_stopped.ply.checkpoint" ] && break; sleep 0.1; done
+kill -INT $finetune_pid
+wait $finetune_pid
+stopped=$?
+if [ $stopped -eq 130 ] && [ ! -e "$work/refit_stopped.ply" ] && [ -f "$work/refit_stopped.ply.checkpoint" ] &&
+   grep -q "interrupted at iteration" "$work/stopped.log"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: finetune on Ctrl-C (exit $stopped)"; sed 's/^/    /' "$work/stopped.log" | tail -5
+fi
+done_before=$(grep -o "interrupted at iteration [0-9]*" "$work/stopped.log" | grep -o "[0-9]*$")
+expect finetune-resume 0 "iterations: $((done_before + 5))" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos3" --iters $((done_before + 5)) --resume --quiet \
+  -o "$work/refit_stopped.ply"
+expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 --rounds 2 --images "$work/photos3" \
+  --background 1,1,1 -o "$work/recovered.ply"
+expect prune-recover-needs-photos 2 "--recover: re-fits to the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 -o "$work/recovered_nophotos.ply"
 sed 's/"width": 80/"width": 81/' "$work/cameras.json" >"$work/wider.json"
 expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$vksplat" render "$work/demo/demo.ply" \
   --cameras "$work/wider.json" --out "$work/z" --images "$work/photos"

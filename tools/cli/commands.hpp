@@ -44,5 +44,6 @@ void register_convert(CLI::App& app, Action& action);
 void register_view(CLI::App& app, Action& action);
 void register_sweep(CLI::App& app, Action& action);
 void register_cluster(CLI::App& app, Action& action);
+void register_finetune(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

@@ -17,5 +17,6 @@ int main(int argc, char** argv) {
     register_view(app, action);
     register_sweep(app, action);
     register_cluster(app, action);
+    register_finetune(app, action);
     return run_cli(app, action, argc, argv);
 }

@@ -6,6 +6,7 @@
 
 #include "commands.hpp"
 #include "progress.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
@@ -25,6 +26,8 @@ struct PruneArgs {
     std::vector<float> background{0, 0, 0};
     std::optional<int> sh_degree;
     uint64_t seed = 0;
+    std::optional<uint64_t> recover;
+    int rounds = 1;
     bool force = false;
 };
 
@@ -59,6 +62,8 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
     if (result.budget && !result.budget->met)
         std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",
                     result.budget->drop);
+    for (size_t r = 0; r < result.recover_rounds.size(); ++r)
+        std::printf("round %zu: pruned to %zu Gaussians and re-fitted\n", r + 1, result.recover_rounds[r]);
     const size_t views = result.test_views.size();
     if (result.before)
         std::printf("test views (%zu) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", views,
@@ -71,7 +76,9 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
 
 int run_prune(const PruneArgs& args) {
     std::vector<std::string> warnings;
-    const GaussianCloud cloud = io::read_ply(args.scene);
+    std::vector<std::string> notes;
+    const GaussianCloud cloud = io::read_scene(args.scene, &notes);
+    for (const auto& n : notes) std::fprintf(stderr, "note: %s\n", n.c_str());
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
@@ -89,6 +96,12 @@ int run_prune(const PruneArgs& args) {
     options.load_scores = optional_path(args.load_scores);
     options.out = args.out;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    if (args.recover) {
+        jobs::RecoverOptions recover;
+        recover.iterations = *args.recover;
+        recover.rounds = args.rounds;
+        options.recover = recover;
+    }
 
     gpu::Context context(args.gpu.context_options());
     Renderer renderer(context);
@@ -104,6 +117,15 @@ int run_prune(const PruneArgs& args) {
     progress.probe = [&](const prune::BudgetProbe& probe) {
         chunks.saw(renderer.last_frame().chunks);
         print_probe(probe);
+    };
+    std::unique_ptr<ProgressLine> refit;
+    int refit_round = 0;
+    progress.refit = [&](int round, const jobs::FinetuneStatus& status) {
+        if (round != refit_round || !refit) {
+            refit_round = round;
+            refit = std::make_unique<ProgressLine>("re-fit round " + std::to_string(round) + ", iterations");
+        }
+        refit->update(status.iteration, status.iterations);
     };
     const jobs::PruneResult result = jobs::prune_scene(renderer, cloud, cameras, options, progress);
     chunks.print(context);
@@ -125,9 +147,10 @@ void register_prune(CLI::App& app, Action& action) {
         "PSNR on the test views drops at most D dB. Every method first drops the Gaussians that touch no\n"
         "pixel of the training views (lossless on those views).\n"
         "Example:\n  vksplat prune lego/point_cloud.ply --cameras lego/cameras.json --method blend \\\n"
-        "      --ratio 0.5 --images lego/images --background 1,1,1 -o lego_half.ply");
+        "      --ratio 0.5 --images lego/images --background 1,1,1 -o lego_half.ply\n"
+        "  (add --recover 5000 to re-fit what is kept to the photos: see vksplat finetune)");
     auto args = std::make_shared<PruneArgs>();
-    command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->required()
         ->check(CLI::ExistingPath);
@@ -163,6 +186,13 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
     command->add_option("--seed", args->seed, "seed of the random method");
+    command->add_option("--recover", args->recover,
+                        "re-fit the kept Gaussians to the photos for N iterations (needs --images); with\n"
+                        "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--rounds", args->rounds, "with --recover: prune and re-fit in R rounds, each dropping a\n"
+                                                  "geometrically growing share, ranked on the re-fitted model")
+        ->check(CLI::Range(1, 100));
     command->add_option("-o,--out", args->out, "pruned scene (.ply)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);

@@ -12,6 +12,8 @@
 
 #include "vksplat/camera.hpp"
 #include "vksplat/io/write_mode.hpp"
+#include "vksplat/jobs/prune_recover.hpp"
+#include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/prune/accumulate.hpp"
 #include "vksplat/prune/quality.hpp"
 #include "vksplat/prune/quality_budget.hpp"
@@ -49,6 +51,9 @@ struct PruneOptions {
     // Either kind of file instead of rendering the training views. A scores file is taken as the
     // scores of `method` and carries no pixel counts, so the lossless pass is then skipped.
     std::optional<std::filesystem::path> load_scores;
+    // Re-fit what is kept to the photos (needs images_dir); see jobs/prune_recover.hpp. With a
+    // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting.
+    std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene (.ply)
     io::WriteMode mode = io::WriteMode::refuse_existing;
 };
@@ -68,18 +73,14 @@ struct PruneResult {
     std::optional<prune::Quality> before;
     prune::Quality after;
     std::optional<prune::BudgetResult> budget;  // with a QualityBudget selector: every probe
+    std::vector<size_t> recover_rounds;         // with recover and no budget: Gaussians kept in each round
 };
 
 struct PruneProgress {
     prune::Progress scoring;                                  // training views rendered
     std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
+    std::function<void(int round, const FinetuneStatus&)> refit;  // re-fit progress (recover)
 };
-
-// INRIA's convention: the first 13 cameras are the test views when there are more than 13, else
-// every camera is (and there is no held-out set).
-std::vector<size_t> default_test_views(size_t camera_count);
-// Every camera that is not a test view; every camera when that leaves none.
-std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views);
 
 // Prunes `cloud`, seen from `cameras`, and writes the result to options.out. Refuses, before any
 // work, outputs that exist (unless options.mode says overwrite) and options it cannot honour.

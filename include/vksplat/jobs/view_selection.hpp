@@ -1,5 +1,5 @@
 #pragma once
-// Parsing of view lists such as "0,3,5-7".
+// Which views a job uses: lists such as "0,3,5-7", and the held-out split.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -9,5 +9,13 @@ namespace vksplat::jobs {
 // Indices named by `text` ("0,3,5-7"), in the order given, each < count. Empty text or "all"
 // selects every view. Throws InputError for malformed text or an index out of range.
 std::vector<size_t> parse_view_list(const std::string& text, size_t count);
+
+// INRIA's convention: the first 13 cameras are the test views when there are more than 13, else
+// every camera is (and there is no held-out set).
+std::vector<size_t> default_test_views(size_t camera_count);
+// Every camera that is not a test view; every camera when that leaves none.
+std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views);
+// Throws InputError naming the first index that is not below camera_count.
+void check_view_indices(const std::vector<size_t>& views, size_t camera_count);
 
 }  // namespace vksplat::jobs

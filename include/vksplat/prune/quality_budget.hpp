@@ -13,6 +13,7 @@
 // the budget and, unless K is 0, whose neighbour K - 1 was probed and missed it.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "vksplat/prune/quality.hpp"
@@ -26,6 +27,9 @@ struct QualityBudget {
     // meets the budget (trying downwards, stopping at the first that misses).
     bool allow_sh_reduction = false;
     double assumed_psnr = 30.0;      // dB, used only without photos (see above)
+    // When set, each probe's model passes through it before it is measured (prune --recover
+    // re-fits it to the photos), so the budget holds for the re-fitted model.
+    std::function<GaussianCloud(const GaussianCloud&)> refit;
 };
 
 struct BudgetProbe {
@@ -47,6 +51,9 @@ struct BudgetResult {
     // is then that model.
     bool met = false;
     std::vector<BudgetProbe> probes;
+    // With QualityBudget::refit: the chosen probe's re-fitted model (re-fitting again would not
+    // give it back exactly: float atomics sum gradients in varying order).
+    std::optional<GaussianCloud> model;
 };
 
 // `cloud` is the unpruned scene, `ranking` orders its candidates (see selection.hpp). Probes are

@@ -1,0 +1,44 @@
+#pragma once
+// Pruning that keeps quality: drop, then re-fit the survivors to the photos (jobs::finetune_scene),
+// optionally in rounds as PUP-3DGS does: each round keeps a geometrically smaller share, ranked by
+// scores recomputed on the model the previous round re-fitted, and re-fits for its share of the
+// iterations. One round is "prune once, then re-fit". What `vksplat prune --recover` runs.
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "vksplat/jobs/finetune.hpp"
+#include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/selection.hpp"
+
+namespace vksplat::jobs {
+
+struct RecoverOptions {
+    uint64_t iterations = 5000;   // re-fit iterations in all, split evenly over the rounds
+    int rounds = 1;
+    prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
+    FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
+};
+
+struct RecoverRound {
+    size_t kept = 0;
+    FinetuneResult refit;         // its cloud is the round's model
+};
+
+struct RecoverResult {
+    GaussianCloud cloud;          // the last round's re-fitted model
+    std::vector<RecoverRound> rounds;
+};
+
+// The kept count of round r (1-based) of `rounds` from n Gaussians down to `target`: n (target/n)^(r/rounds).
+size_t round_target(size_t n, size_t target, int round, int rounds);
+
+// `ranking` ranks the Gaussians of `cloud` (the unpruned model) for the first round; `keep` is
+// the final count. Throws InputError for rounds < 1 or no iterations per round.
+RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
+                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
+                                const PhotoSource& photos, const RecoverOptions& options,
+                                const QualityProbe& quality = {},
+                                const std::function<void(int round, const FinetuneStatus&)>& progress = {});
+
+}  // namespace vksplat::jobs

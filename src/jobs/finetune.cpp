@@ -1,0 +1,144 @@
+// The re-fit job: photos in, Adam steps over random training views, checkpoints, test views
+// measured before and after.
+#include "vksplat/jobs/finetune.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <numeric>
+#include <random>
+
+#include "vksplat/error.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+#include "vksplat/train/scene_extent.hpp"
+
+namespace vksplat::jobs {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Progress is reported at most this often (and at the last step).
+constexpr double kReportSeconds = 0.5;
+
+double median(std::vector<double> values) {
+    if (values.empty()) return 0;
+    const auto middle = values.begin() + values.size() / 2;
+    std::nth_element(values.begin(), middle, values.end());
+    return *middle;
+}
+
+// The training view of step `iteration`: the reference walks a fresh random permutation of the
+// training views each epoch. Each epoch's permutation comes from the seed and the epoch alone, so
+// a resumed run continues the same order.
+size_t view_of_step(uint64_t iteration, uint64_t seed, const std::vector<size_t>& views) {
+    const uint64_t epoch = iteration / views.size();
+    std::vector<size_t> order = views;
+    std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + epoch);
+    std::shuffle(order.begin(), order.end(), rng);
+    return order[iteration % views.size()];
+}
+
+}  // namespace
+
+FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
+                              const std::vector<Camera>& cameras, const PhotoSource& photos,
+                              const FinetuneOptions& options, const QualityProbe& quality,
+                              const std::function<void(const FinetuneStatus&)>& progress) {
+    FinetuneResult result;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.train_views =
+        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
+    check_view_indices(result.test_views, cameras.size());
+    check_view_indices(result.train_views, cameras.size());
+    if (result.train_views.empty()) throw InputError("finetune", "no training views");
+    if (options.resume && (options.checkpoint.empty() || !std::filesystem::exists(options.checkpoint)))
+        throw InputError(options.checkpoint.empty() ? std::string("--resume") : options.checkpoint.string(),
+                         "no checkpoint to resume from");
+
+    // Every photo is read and checked before the first step: a bad one found late would waste the run.
+    std::map<size_t, train::Photo> train_photos;
+    for (size_t view : result.train_views) {
+        const Camera& camera = cameras[view];
+        const io::ImageRGB image = photos(camera);
+        if (image.width != camera.width || image.height != camera.height)
+            throw InputError("photo of camera '" + camera.name + "'",
+                             "is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                                 " but the camera is " + std::to_string(camera.width) + "x" +
+                                 std::to_string(camera.height));
+        train_photos.emplace(view, train::Photo::from_image(image));
+    }
+
+    train::TrainOptions train_options = options.train;
+    if (train_options.scene_extent <= 0) {
+        std::vector<Camera> train_cameras;
+        for (size_t view : result.train_views) train_cameras.push_back(cameras[view]);
+        const train::SceneExtent extent = train::scene_extent(train_cameras);
+        train_options.scene_extent = extent.radius;
+        for (size_t i : extent.distrusted) result.distrusted_cameras.push_back(result.train_views[i]);
+    }
+    result.scene_extent = train_options.scene_extent;
+    std::unique_ptr<train::Trainer> trainer =
+        options.resume ? std::make_unique<train::Trainer>(context, options.checkpoint, train_options)
+                       : std::make_unique<train::Trainer>(context, cloud, train_options);
+    result.sanitize = trainer->sanitize_report();
+    if (quality && !options.resume) result.before = quality(trainer->cloud());
+
+    std::vector<std::pair<std::string, std::vector<double>>> stage_times;  // in recording order
+    std::vector<double> step_times;
+    const auto start = Clock::now();
+    auto last_report = start;
+    double loss_sum = 0, mse_sum = 0;
+    uint64_t since_report = 0;
+    const uint64_t first = trainer->iteration();
+    while (trainer->iteration() < options.iterations) {
+        if (options.stop && options.stop->load()) {
+            result.interrupted = true;
+            break;
+        }
+        const uint64_t iteration = trainer->iteration();
+        const size_t view = view_of_step(iteration, options.seed, result.train_views);
+        const train::StepResult step = trainer->step(cameras[view], train_photos.at(view));
+        step_times.push_back(step.gpu_milliseconds);
+        for (const auto& stage : step.stages) {
+            auto same = std::find_if(stage_times.begin(), stage_times.end(),
+                                     [&](const auto& entry) { return entry.first == stage.stage; });
+            if (same == stage_times.end()) same = stage_times.insert(stage_times.end(), {stage.stage, {}});
+            same->second.push_back(stage.milliseconds);
+        }
+        loss_sum += step.loss;
+        mse_sum += std::pow(10.0, -step.psnr / 10.0);
+        ++since_report;
+        const bool last = trainer->iteration() == options.iterations;
+        if (!options.checkpoint.empty() && (trainer->iteration() % options.checkpoint_every == 0 || last))
+            trainer->save_checkpoint(options.checkpoint);
+        const auto now = Clock::now();
+        if (progress && (last || std::chrono::duration<double>(now - last_report).count() >= kReportSeconds)) {
+            FinetuneStatus status;
+            status.iteration = trainer->iteration();
+            status.iterations = options.iterations;
+            status.loss = loss_sum / double(since_report);
+            status.psnr = -10.0 * std::log10(mse_sum / double(since_report));
+            status.seconds = std::chrono::duration<double>(now - start).count();
+            const double per_step = status.seconds / double(trainer->iteration() - first);
+            status.seconds_left = per_step * double(options.iterations - trainer->iteration());
+            status.gaussians = trainer->size();
+            progress(status);
+            last_report = now;
+            loss_sum = mse_sum = 0;
+            since_report = 0;
+        }
+    }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    if (result.interrupted && !options.checkpoint.empty()) trainer->save_checkpoint(options.checkpoint);
+    result.iterations = trainer->iteration();
+    result.skipped = trainer->skipped_steps();
+    result.gpu_ms_per_iteration = median(step_times);
+    for (const auto& [label, times] : stage_times) result.stages.push_back({label, median(times)});
+    result.device_bytes = trainer->device_bytes();
+    result.cloud = trainer->cloud();
+    if (quality && !result.interrupted) result.after = quality(result.cloud);
+    return result;
+}
+
+}  // namespace vksplat::jobs

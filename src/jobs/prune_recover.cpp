@@ -1,0 +1,60 @@
+// Prune, re-fit, and (in rounds) prune the re-fitted model again.
+#include "vksplat/jobs/prune_recover.hpp"
+
+#include <cmath>
+
+#include "vksplat/error.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+#include "vksplat/prune/accumulate.hpp"
+
+namespace vksplat::jobs {
+
+size_t round_target(size_t n, size_t target, int round, int rounds) {
+    if (round >= rounds || n == 0) return target;
+    const double share = std::pow(double(target) / double(n), double(round) / double(rounds));
+    return std::max(target, static_cast<size_t>(std::llround(double(n) * share)));
+}
+
+RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
+                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
+                                const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
+                                const std::function<void(int round, const FinetuneStatus&)>& progress) {
+    if (options.rounds < 1) throw InputError("--rounds " + std::to_string(options.rounds), "must be 1 or more");
+    if (options.rounds > 1 && options.finetune.resume)
+        throw InputError("--resume", "continues one re-fit; it cannot resume a run of several rounds");
+    const uint64_t per_round = options.iterations / uint64_t(options.rounds);
+    if (per_round == 0)
+        throw InputError("--recover " + std::to_string(options.iterations),
+                         "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
+    FinetuneOptions finetune = options.finetune;
+    finetune.iterations = per_round;
+    const auto test = finetune.test_views.empty() ? default_test_views(cameras.size()) : finetune.test_views;
+    const auto train = finetune.train_views.empty() ? default_train_views(cameras.size(), test) : finetune.train_views;
+    RenderSettings settings;
+    settings.background = finetune.train.background;
+    settings.max_sh_degree = finetune.train.sh_degree;
+
+    RecoverResult result;
+    GaussianCloud model = cloud.subset(ranking.keep_best(round_target(cloud.size(), keep, 1, options.rounds)));
+    for (int round = 1;; ++round) {
+        RecoverRound done;
+        done.kept = model.size();
+        // Only the last round's model is measured: the others are intermediate.
+        const bool last = round == options.rounds;
+        done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
+                                    [&](const FinetuneStatus& s) {
+                                        if (progress) progress(round, s);
+                                    });
+        model = std::move(done.refit.cloud);
+        result.rounds.push_back(std::move(done));
+        if (last || result.rounds.back().refit.interrupted) break;
+        // The next round ranks the re-fitted model by its own contributions now.
+        const prune::ViewTotals totals = prune::accumulate(renderer, model, cameras, train, settings);
+        const prune::Ranking next(prune::score(model, totals, options.method), prune::lossless_mask(totals));
+        model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, options.rounds)));
+    }
+    result.cloud = std::move(model);
+    return result;
+}
+
+}  // namespace vksplat::jobs

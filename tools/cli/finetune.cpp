@@ -1,0 +1,150 @@
+// vksplat finetune: re-fits a scene (a pruned one, typically) to its photos on the GPU.
+#include <atomic>
+#include <csignal>
+#include <cstdio>
+#include <memory>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/jobs/finetune.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+
+namespace vksplat::cli {
+namespace {
+
+struct FinetuneArgs {
+    GpuOptions gpu;
+    std::string scene, cameras, images, out, test_views, train_views, checkpoint;
+    uint64_t iterations = 5000, checkpoint_every = 1000, seed = 0;
+    std::vector<float> background{0, 0, 0};
+    bool resume = false, force = false, quiet = false;
+};
+
+// Ctrl-C asks the run to stop after the step in flight; the job then writes its checkpoint. A
+// signal handler can only reach a flag with static storage, so this is the one such flag.
+std::atomic<bool> interrupt_requested{false};
+extern "C" void request_stop(int) { interrupt_requested.store(true); }
+
+void print_status(const jobs::FinetuneStatus& s, bool terminal) {
+    std::fprintf(stderr, "%siteration %llu/%llu  loss %.4f  train PSNR %.2f dB  %zu Gaussians  %.0f s, %.0f s left%s",
+                 terminal ? "\r" : "", static_cast<unsigned long long>(s.iteration),
+                 static_cast<unsigned long long>(s.iterations), s.loss, s.psnr, s.gaussians, s.seconds, s.seconds_left,
+                 terminal && s.iteration != s.iterations ? "   " : "\n");
+    std::fflush(stderr);
+}
+
+int run_finetune(const FinetuneArgs& args) {
+    const auto mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    // Refused before any work: minutes of training must not end in a refusal.
+    if (mode == io::WriteMode::refuse_existing && std::filesystem::exists(args.out))
+        throw InputError(args.out, "already exists; not overwritten (--force replaces it)");
+    std::vector<std::string> notes;
+    const GaussianCloud cloud = io::read_scene(args.scene, &notes);
+    for (const auto& n : notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+    const auto cameras = io::read_cameras(args.cameras, &notes);
+
+    jobs::FinetuneOptions options;
+    options.iterations = args.iterations;
+    if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
+    if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
+    options.train.background = {args.background[0], args.background[1], args.background[2]};
+    options.seed = args.seed;
+    options.checkpoint = args.checkpoint.empty() ? std::filesystem::path(args.out + ".checkpoint")
+                                                 : std::filesystem::path(args.checkpoint);
+    options.checkpoint_every = args.checkpoint_every;
+    options.resume = args.resume;
+    options.stop = &interrupt_requested;
+    if (options.test_views.empty()) options.test_views = jobs::default_test_views(cameras.size());
+    if (options.train_views.empty()) options.train_views = jobs::default_train_views(cameras.size(), options.test_views);
+    std::vector<Camera> test_cameras;
+    for (size_t v : options.test_views) test_cameras.push_back(cameras[v]);
+
+    gpu::Context context(args.gpu.context_options());
+    Renderer renderer(context);
+    RenderSettings settings;
+    settings.background = options.train.background;
+    const auto photos = jobs::photos_in_folder(args.images, options.train.background);
+    const prune::TestViews views = prune::photo_targets(test_cameras, args.images, options.train.background);
+    const jobs::QualityProbe quality = [&](const GaussianCloud& scene) {
+        return prune::measure_quality(renderer, scene, views, settings, true);
+    };
+
+    std::signal(SIGINT, request_stop);
+    std::signal(SIGTERM, request_stop);
+    const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
+    std::fprintf(stderr, "re-fitting %zu Gaussians on %s: %llu iterations\n", cloud.size(), context.info().name.c_str(),
+                 static_cast<unsigned long long>(args.iterations));
+    const auto result = jobs::finetune_scene(context, cloud, cameras, photos, options, quality,
+                                             [&](const jobs::FinetuneStatus& s) {
+                                                 if (!args.quiet || s.iteration == s.iterations) print_status(s, terminal);
+                                             });
+    for (size_t v : result.distrusted_cameras)
+        std::fprintf(stderr, "warning: camera '%s' lies far from the others; left out of the scene extent\n",
+                     cameras[v].name.c_str());
+    if (result.sanitize.changed())
+        std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), result.sanitize.summary().c_str());
+    if (result.interrupted) {
+        std::fprintf(stderr, "\ninterrupted at iteration %llu: state saved in %s (--resume continues); %s not written\n",
+                     static_cast<unsigned long long>(result.iterations), options.checkpoint.string().c_str(),
+                     args.out.c_str());
+        return 130;
+    }
+    io::write_scene(result.cloud, args.out, mode);
+    std::printf("iterations: %llu (%llu skipped for non-finite gradients), %.1f s, GPU %.3f ms per iteration\n",
+                static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
+                result.seconds, result.gpu_ms_per_iteration);
+    for (const auto& stage : result.stages) std::printf("    %-20s %.3f ms\n", stage.stage.c_str(), stage.milliseconds);
+    const size_t n = result.test_views.size();
+    if (result.before)
+        std::printf("test views (%zu) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", n,
+                    result.before->mean_psnr, result.after->mean_psnr, result.before->mean_ssim,
+                    result.after->mean_ssim);
+    else if (result.after)
+        std::printf("test views (%zu) against the photos: PSNR %.3f dB, SSIM %.4f\n", n, result.after->mean_psnr,
+                    result.after->mean_ssim);
+    std::printf("device memory: %.1f MB\nwrote %s\n", double(result.device_bytes) / 1e6, args.out.c_str());
+    return 0;
+}
+
+}  // namespace
+
+void register_finetune(CLI::App& app, Action& action) {
+    auto* command = app.add_subcommand("finetune", "re-fit a scene's Gaussians to its photos (Adam on the GPU)");
+    command->footer(
+        "The reference trainer's loss (0.8 L1 + 0.2 D-SSIM) and learning rates, the position rate at its\n"
+        "final value; one random training view per step; the test views are never trained on and are\n"
+        "measured before and after. A checkpoint (OUT.checkpoint unless --checkpoint) is kept every\n"
+        "--checkpoint-every iterations and on Ctrl-C; --resume continues from it.\n"
+        "Example:\n  vksplat finetune lego_half.ply --cameras lego/cameras.json --images lego/images \\\n"
+        "      --background 1,1,1 --iters 5000 -o lego_half_refit.ply");
+    auto args = std::make_shared<FinetuneArgs>();
+    command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
+    command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
+        ->required()
+        ->check(CLI::ExistingPath);
+    command->add_option("--images", args->images, "the photos, found by camera name")->required()->check(CLI::ExistingDirectory);
+    command->add_option("--iters", args->iterations, "iterations in all (a resumed run counts the earlier ones)")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--test-views", args->test_views,
+                        "held-out views, e.g. 0-12 (default: the first 13 if there are more, else all)");
+    command->add_option("--train-views", args->train_views, "views to train on (default: all but the test views)");
+    command->add_option("--background", args->background, "background colour R,G,B in [0,1] (also under photo alpha)")
+        ->delimiter(',')
+        ->expected(3);
+    command->add_option("--seed", args->seed, "seed of the training views' order");
+    command->add_option("--checkpoint", args->checkpoint, "checkpoint file (default: OUT.checkpoint)");
+    command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
+        ->check(CLI::PositiveNumber);
+    command->add_flag("--resume", args->resume, "continue from the checkpoint");
+    command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
+    command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .splat or .spz)")->required();
+    command->add_flag("--force", args->force, "overwrite an existing output");
+    add_gpu_options(*command, args->gpu);
+    command->callback([&action, args] { action = [args] { return run_finetune(*args); }; });
+}
+
+}  // namespace vksplat::cli
