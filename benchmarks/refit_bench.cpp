@@ -1,0 +1,134 @@
+// refit_bench: the re-fit jobs (jobs::finetune_scene, what `vksplat finetune` runs, and with --drop
+// jobs::prune_and_recover, what `vksplat prune --method blend --ratio R --recover N` runs) on a GPU host
+// that has a Vulkan driver and no image codecs. Photos come as <name>.npy (uint8 [H, W, 3], made
+// on the host by benchmarks/photos_to_npy.py); quality is PSNR against them on the test views. Prints
+// the test PSNR before and after, the time per iteration (GPU median and wall) with its per-pass
+// split, and the device memory of the re-fit against the renderer's for the same scene.
+//
+//   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
+//   refit_bench lego.ply ... --drop 0.8 --rounds 2   (blend ranking, 80% dropped, two prune-re-fit rounds)
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <cmath>
+#include <map>
+#include <optional>
+
+#include "vksplat/eval/metrics.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/io/npy.hpp"
+#include "vksplat/jobs/finetune.hpp"
+#include "vksplat/jobs/prune_recover.hpp"
+#include "vksplat/prune/accumulate.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+
+using namespace vksplat;
+
+namespace {
+
+io::ImageRGB read_npy_photo(const std::filesystem::path& folder, const Camera& camera) {
+    const auto path = folder / (std::filesystem::path(camera.name).stem().string() + ".npy");
+    const io::NpyArray array = io::read_npy(path);
+    if (array.shape.size() != 3 || array.shape[2] != 3)
+        throw InputError(path.string(), "expected uint8 [H, W, 3]");
+    const auto bytes = array.values<uint8_t>();
+    io::ImageRGB image{int(array.shape[1]), int(array.shape[0]), std::vector<float>(bytes.size())};
+    for (size_t i = 0; i < bytes.size(); ++i) image.rgb[i] = float(bytes[i]) / 255.0f;
+    return image;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"refit_bench: re-fit a scene to its photos on the GPU and report quality, time and memory"};
+    std::string scene_path, cameras_path, photos_dir, device;
+    std::vector<float> background{0, 0, 0};
+    uint64_t iterations = 5000;
+    std::optional<double> drop;
+    int rounds = 1;
+    app.add_option("scene", scene_path)->required();
+    app.add_option("--cameras", cameras_path)->required();
+    app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
+    app.add_option("--background", background)->delimiter(',')->expected(3);
+    app.add_option("--iters", iterations);
+    app.add_option("--device", device);
+    app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
+    app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        const GaussianCloud cloud = io::read_scene(scene_path);
+        const auto cameras = io::read_cameras(cameras_path);
+        gpu::Context context(gpu::ContextOptions{device, false, 0});
+        jobs::FinetuneOptions options;
+        options.iterations = iterations;
+        options.train.background = {background[0], background[1], background[2]};
+        const auto test = jobs::default_test_views(cameras.size());
+
+        std::map<size_t, io::ImageRGB> test_photos;
+        for (size_t v : test) test_photos[v] = read_npy_photo(photos_dir, cameras[v]);
+        Renderer renderer(context);
+        RenderSettings settings;
+        settings.background = options.train.background;
+        uint64_t render_bytes = 0;
+        const jobs::QualityProbe quality = [&](const GaussianCloud& scene) {
+            prune::Quality q;
+            renderer.set_scene(scene);
+            for (const auto& [v, photo] : test_photos) {
+                const RenderOutput out = renderer.render(cameras[v], settings);
+                q.psnr.push_back(eval::psnr(out.rgb.data(), photo.rgb.data(), out.width, out.height));
+                q.mean_psnr += q.psnr.back() / double(test_photos.size());
+                render_bytes = std::max<uint64_t>(render_bytes, renderer.last_frame().device_bytes);
+            }
+            return q;
+        };
+        std::printf("%s: %zu Gaussians on %s, %llu iterations\n", scene_path.c_str(), cloud.size(),
+                    context.info().name.c_str(), static_cast<unsigned long long>(iterations));
+        const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
+        const auto report = [](const jobs::FinetuneStatus& s) {
+            if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
+                std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
+                            static_cast<unsigned long long>(s.iteration), s.loss, s.psnr, s.seconds);
+        };
+        jobs::FinetuneResult result;
+        if (!drop) {
+            result = jobs::finetune_scene(context, cloud, cameras, photos, options, quality, report);
+            std::printf("test PSNR (%zu views): %.3f -> %.3f dB (%+.3f)\n", test.size(), result.before->mean_psnr,
+                        result.after->mean_psnr, result.after->mean_psnr - result.before->mean_psnr);
+        } else {
+            const auto train = jobs::default_train_views(cameras.size(), test);
+            const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings);
+            const prune::Ranking ranking(prune::score(cloud, totals, prune::ScoreMethod::blend),
+                                         prune::lossless_mask(totals));
+            const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
+            const double unpruned = quality(cloud).mean_psnr;
+            const double pruned = quality(cloud.subset(ranking.keep_best(keep))).mean_psnr;
+            jobs::RecoverOptions recover;
+            recover.iterations = iterations;
+            recover.rounds = rounds;
+            recover.finetune = options;
+            const auto recovered = jobs::prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos,
+                                                           recover, quality, [&](int, const jobs::FinetuneStatus& s) {
+                                                               report(s);
+                                                           });
+            for (size_t r = 0; r < recovered.rounds.size(); ++r)
+                std::printf("round %zu: %zu Gaussians, %llu iterations, %.1f s\n", r + 1, recovered.rounds[r].kept,
+                            static_cast<unsigned long long>(recovered.rounds[r].refit.iterations),
+                            recovered.rounds[r].refit.seconds);
+            result = recovered.rounds.back().refit;
+            std::printf("test PSNR (%zu views): unpruned %.3f, %.0f%% dropped %.3f (%+.3f), re-fitted %.3f (%+.3f)\n",
+                        test.size(), unpruned, 100.0 * *drop, pruned, pruned - unpruned, result.after->mean_psnr,
+                        result.after->mean_psnr - unpruned);
+        }
+        std::printf("iterations %llu (skipped %llu), wall %.2f s = %.3f ms per iteration, GPU median %.3f ms\n",
+                    static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
+                    result.seconds, 1e3 * result.seconds / double(result.iterations), result.gpu_ms_per_iteration);
+        for (const auto& stage : result.stages) std::printf("    %-20s %.4f ms\n", stage.stage.c_str(), stage.milliseconds);
+        std::printf("device memory: re-fit %.1f MB, renderer %.1f MB (%.2fx)\n", double(result.device_bytes) / 1e6,
+                    double(render_bytes) / 1e6, double(result.device_bytes) / double(std::max<uint64_t>(render_bytes, 1)));
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}
