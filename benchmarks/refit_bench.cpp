@@ -47,6 +47,7 @@ int main(int argc, char** argv) {
     uint64_t iterations = 5000;
     std::optional<double> drop;
     int rounds = 1;
+    std::string position_lr = "final";
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
     app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
@@ -55,6 +56,8 @@ int main(int argc, char** argv) {
     app.add_option("--device", device);
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
+    app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
+        ->check(CLI::IsMember({"final", "decay"}));
     CLI11_PARSE(app, argc, argv);
     try {
         const GaussianCloud cloud = io::read_scene(scene_path);
@@ -63,6 +66,7 @@ int main(int argc, char** argv) {
         jobs::FinetuneOptions options;
         options.iterations = iterations;
         options.train.background = {background[0], background[1], background[2]};
+        if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
         const auto test = jobs::default_test_views(cameras.size());
 
         std::map<size_t, io::ImageRGB> test_photos;

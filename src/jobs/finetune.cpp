@@ -78,6 +78,8 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
         for (size_t i : extent.distrusted) result.distrusted_cameras.push_back(result.train_views[i]);
     }
     result.scene_extent = train_options.scene_extent;
+    if (train_options.position_schedule == train::PositionSchedule::decay)
+        train_options.rates.position_decay_steps = static_cast<int>(std::min<uint64_t>(options.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
         options.resume ? std::make_unique<train::Trainer>(context, options.checkpoint, train_options)
                        : std::make_unique<train::Trainer>(context, cloud, train_options);

@@ -19,20 +19,20 @@ namespace {
 constexpr uint32_t kInitialEntriesPerGaussian = 4;  // as the renderer starts
 constexpr double kEntryGrowth = 1.25;
 
-gpu::ComputePipeline blend_backward_pipeline(const gpu::Context& context) {
-    if (context.info().float_atomics)
+gpu::ComputePipeline blend_backward_pipeline(const gpu::Context& context, bool compare_and_swap) {
+    if (context.info().float_atomics && !compare_and_swap)
         return {context, gpu::spirv_words(blend_backward_spv), sizeof(BlendBackwardPush), {}, "blend_backward"};
     return {context, gpu::spirv_words(blend_backward_cas_spv), sizeof(BlendBackwardPush), {}, "blend_backward_cas"};
 }
 
 }  // namespace
 
-DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c)
+DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, bool compare_and_swap)
     : context_(c),
       binning_(c),
       activate_(c, gpu::spirv_words(train_activate_spv), sizeof(ActivatePush), {}, "train_activate"),
       blend_(c, gpu::spirv_words(blend_train_spv), sizeof(BlendTrainPush), {}, "blend_train"),
-      blend_backward_(blend_backward_pipeline(c)),
+      blend_backward_(blend_backward_pipeline(c, compare_and_swap)),
       preprocess_backward_(c, gpu::spirv_words(preprocess_backward_spv), sizeof(PreprocessBackwardPush), {},
                            "preprocess_backward"),
       frame_(c),

@@ -20,7 +20,8 @@ namespace vksplat::train {
 
 class DifferentiableRenderer {
 public:
-    explicit DifferentiableRenderer(const gpu::Context& context);
+    // compare_and_swap: sum gradients with the CAS loop even where the device adds floats atomically.
+    explicit DifferentiableRenderer(const gpu::Context& context, bool compare_and_swap = false);
 
     // Sizes the buffers for the scene and the image (keeps them where they suffice). Tile entries
     // start at a few per Gaussian and grow through grow_entries().

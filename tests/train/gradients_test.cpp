@@ -108,10 +108,23 @@ TypeError compare(GaussianCloud& cloud, std::vector<float>& parameters, const st
     return error;
 }
 
+// Edge cases of the forward pass that the backward must follow: a Gaussian beyond the Jacobian's
+// lateral clamp (1.3 tan(fov/2)) but large enough to reach into the picture, and one whose red
+// channel is clamped at 0 (it passes no gradient there).
+GaussianCloud edge_scene(uint32_t seed, int sh_degree) {
+    GaussianCloud cloud = smooth_scene(seed, 8, sh_degree);
+    const int stride = cloud.sh_coefficients() * 3;
+    cloud.positions[0] = 0.8f * cloud.positions[2];  // x / z = 0.8 > 1.3 * 32 / 60
+    for (int k = 0; k < 3; ++k) cloud.log_scales[k] = std::log(0.6f);
+    cloud.sh[1 * stride + 0] = -3.0f;                 // red: 0.5 + C0 * (-3) < 0
+    return cloud;
+}
+
 class Gradients : public GpuTest {
 protected:
-    void check_every_type(uint32_t seed, int sh_degree, const std::array<float, 3>& background) {
-        GaussianCloud cloud = smooth_scene(seed, 10, sh_degree);
+    void check_every_type(uint32_t seed, int sh_degree, const std::array<float, 3>& background,
+                          bool edges = false) {
+        GaussianCloud cloud = edges ? edge_scene(seed, sh_degree) : smooth_scene(seed, 10, sh_degree);
         const Camera camera = forward_camera(64, 48, 60.0);
         RenderSettings settings;
         settings.background = background;
@@ -159,6 +172,37 @@ protected:
 TEST_F(Gradients, EveryParameterTypeMatchesFiniteDifferences) { check_every_type(7, 3, {0.0f, 0.0f, 0.0f}); }
 
 TEST_F(Gradients, WithABackgroundAndLowerShDegree) { check_every_type(21, 1, {0.3f, 0.6f, 1.0f}); }
+
+TEST_F(Gradients, ThroughTheJacobianClampAndTheColourClamp) { check_every_type(33, 2, {0.0f, 0.0f, 0.0f}, true); }
+
+// The compare-and-swap loop (devices without float atomics) sums the same gradients: equal up to
+// the order of float additions.
+TEST_F(Gradients, CompareAndSwapSumsAgreeWithFloatAtomics) {
+    const GaussianCloud cloud = random_scene(17, 300, 3);
+    const Camera camera = forward_camera(96, 64, 80.0);
+    std::mt19937 rng(2);
+    std::vector<float> weights(size_t(camera.width) * camera.height * 3);
+    for (auto& w : weights) w = std::uniform_real_distribution<float>(-1.0f, 1.0f)(rng);
+    const auto atomics = train::render_gradients(context(), cloud, camera, {}, weights);
+    const auto cas = train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::compare_and_swap);
+    std::printf("  float atomics on this device: %s\n", context().info().float_atomics ? "yes" : "no");
+    const auto relative = [](const std::vector<float>& a, const std::vector<float>& b) {
+        double diff = 0, norm = 0;
+        for (size_t i = 0; i < a.size(); ++i) {
+            diff += double(a[i] - b[i]) * (a[i] - b[i]);
+            norm += double(b[i]) * b[i];
+        }
+        return std::sqrt(diff / std::max(norm, 1e-30));
+    };
+    EXPECT_LE(relative(cas.gradient.positions, atomics.gradient.positions), 1e-5);
+    EXPECT_LE(relative(cas.gradient.log_scales, atomics.gradient.log_scales), 1e-5);
+    EXPECT_LE(relative(cas.gradient.rotations, atomics.gradient.rotations), 1e-5);
+    EXPECT_LE(relative(cas.gradient.opacity_logits, atomics.gradient.opacity_logits), 1e-5);
+    EXPECT_LE(relative(cas.gradient.sh, atomics.gradient.sh), 1e-5);
+    double norm = 0;
+    for (float g : atomics.gradient.positions) norm += double(g) * g;
+    EXPECT_GT(norm, 0.0);  // not two empty gradients agreeing
+}
 
 }  // namespace
 }  // namespace vksplat::test

@@ -21,6 +21,7 @@ struct FinetuneArgs {
     std::string scene, cameras, images, out, test_views, train_views, checkpoint;
     uint64_t iterations = 5000, checkpoint_every = 1000, seed = 0;
     std::vector<float> background{0, 0, 0};
+    std::string position_lr = "final";
     bool resume = false, force = false, quiet = false;
 };
 
@@ -53,6 +54,7 @@ int run_finetune(const FinetuneArgs& args) {
     if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
     options.train.background = {args.background[0], args.background[1], args.background[2]};
     options.seed = args.seed;
+    if (args.position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
     options.checkpoint = args.checkpoint.empty() ? std::filesystem::path(args.out + ".checkpoint")
                                                  : std::filesystem::path(args.checkpoint);
     options.checkpoint_every = args.checkpoint_every;
@@ -136,6 +138,10 @@ void register_finetune(CLI::App& app, Action& action) {
         ->delimiter(',')
         ->expected(3);
     command->add_option("--seed", args->seed, "seed of the training views' order");
+    command->add_option("--position-lr", args->position_lr,
+                        "final: the reference's final position rate throughout (default); decay: from its\n"
+                        "initial to its final rate over the run, as a fresh training does")
+        ->check(CLI::IsMember({"final", "decay"}));
     command->add_option("--checkpoint", args->checkpoint, "checkpoint file (default: OUT.checkpoint)");
     command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
         ->check(CLI::PositiveNumber);

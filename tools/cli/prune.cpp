@@ -27,7 +27,8 @@ struct PruneArgs {
     std::optional<int> sh_degree;
     uint64_t seed = 0;
     std::optional<uint64_t> recover;
-    int rounds = 1;
+    std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
+    std::string position_lr = "decay";
     bool force = false;
 };
 
@@ -99,7 +100,9 @@ int run_prune(const PruneArgs& args) {
     if (args.recover) {
         jobs::RecoverOptions recover;
         recover.iterations = *args.recover;
-        recover.rounds = args.rounds;
+        const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector);
+        recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
+        if (args.position_lr == "final") recover.finetune.train.position_schedule = train::PositionSchedule::final_rate;
         options.recover = recover;
     }
 
@@ -186,13 +189,20 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
     command->add_option("--seed", args->seed, "seed of the random method");
-    command->add_option("--recover", args->recover,
+    auto* recover = command->add_option("--recover", args->recover,
                         "re-fit the kept Gaussians to the photos for N iterations (needs --images); with\n"
                         "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting")
         ->check(CLI::PositiveNumber);
-    command->add_option("--rounds", args->rounds, "with --recover: prune and re-fit in R rounds, each dropping a\n"
-                                                  "geometrically growing share, ranked on the re-fitted model")
-        ->check(CLI::Range(1, 100));
+    auto* rounds = command->add_option("--rounds", args->rounds,
+                                       "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop),\n"
+                                       "each dropping a geometrically growing share, ranked on the re-fitted model")
+                       ->check(CLI::Range(1, 100));
+    auto* position_lr = command->add_option("--position-lr", args->position_lr,
+                                            "with --recover: decay (default) the position rate from its initial to\n"
+                                            "its final value in each re-fit, or keep it at the final value")
+                            ->check(CLI::IsMember({"final", "decay"}));
+    rounds->needs(recover);
+    position_lr->needs(recover);
     command->add_option("-o,--out", args->out, "pruned scene (.ply)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);

@@ -45,7 +45,8 @@ struct FinetuneOptions {
     const std::atomic<bool>* stop = nullptr;  // raised: checkpoint and return with interrupted set
 
     // The position rate at its final value, and the scene extent (0) found from the training
-    // cameras by train::scene_extent.
+    // cameras by train::scene_extent. With PositionSchedule::decay the position rate falls from
+    // its initial to its final value over this re-fit's iterations (not the reference's 30,000).
     FinetuneOptions() {
         train.position_schedule = train::PositionSchedule::final_rate;
         train.scene_extent = 0;

@@ -20,9 +20,15 @@ struct RenderGradients {
     GaussianCloud gradient;
 };
 
+// How the blend backward sums each splat's gradients over pixels: with float atomics where the
+// device has them (VK_EXT_shader_atomic_float), else with the compare-and-swap loop every device
+// can run; compare_and_swap forces the loop (to test it on any device).
+enum class GradientSums { device_default, compare_and_swap };
+
 // Throws std::invalid_argument if weights is not 3 per pixel or the cloud needs sanitising (its
 // gradient would not line up with it); InputError for an invalid camera.
 RenderGradients render_gradients(const gpu::Context& context, const GaussianCloud& cloud, const Camera& camera,
-                                 const RenderSettings& settings, const std::vector<float>& weights);
+                                 const RenderSettings& settings, const std::vector<float>& weights,
+                                 GradientSums sums = GradientSums::device_default);
 
 }  // namespace vksplat::train
