@@ -7,7 +7,6 @@
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/npy.hpp"
-#include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/bench_report.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/tiled_scene.hpp"
@@ -46,7 +45,7 @@ void print_view(const jobs::ViewBenchmark& v, const std::optional<jobs::DeviceRa
 }
 
 int run_bench(const BenchArgs& args) {
-    const GaussianCloud base = io::read_ply(args.scene);
+    const GaussianCloud base = read_scene_file(args.scene);
     GaussianCloud cloud = base;
     std::vector<Camera> cameras;
     if (!args.tiled.empty()) {
@@ -134,7 +133,7 @@ int run_bench(const BenchArgs& args) {
 void register_bench(CLI::App& app, Action& action) {
     auto args = std::make_shared<BenchArgs>();
     CLI::App* cmd = app.add_subcommand("bench", "GPU time per frame and per stage (median over repeated frames)");
-    cmd->add_option("scene", args->scene, "scene (.ply)")->required()->check(CLI::ExistingFile);
+    cmd->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     cmd->add_option("--cameras", args->cameras, "camera file (cameras.json, COLMAP, transforms.json)")
         ->check(CLI::ExistingPath);
     cmd->add_option("--views", args->views, "views to time, e.g. 0,3,5-7 (default: all)");

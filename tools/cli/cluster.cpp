@@ -31,7 +31,7 @@ struct ClusterArgs {
 };
 
 void add_common(CLI::App& c, ClusterArgs& a) {
-    c.add_option("scene", a.scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    c.add_option("scene", a.scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     c.add_option("--cameras", a.cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->required()
         ->check(CLI::ExistingPath);
@@ -78,7 +78,7 @@ void print_scores(const char* what, const jobs::SubjectScores& s) {
 
 int run_stages(ClusterArgs& args, unsigned stages) {
     std::vector<std::string> warnings;
-    GaussianCloud cloud = io::read_ply(args.scene);
+    GaussianCloud cloud = read_scene_file(args.scene);
     const SanitizeReport report = sanitize(cloud);
     if (report.changed()) std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), report.summary().c_str());
     const auto cameras = io::read_cameras(args.cameras, &warnings);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "vksplat/gpu/context.hpp"
+#include "vksplat/scene.hpp"
 
 namespace vksplat::cli {
 
@@ -31,6 +32,10 @@ struct ChunkReport {
     void print(const gpu::Context& context) const;
 };
 
+// Reads a scene file in any format vksplat reads (io::read_scene: by extension, and the header for
+// .ply), printing the reader's notes (ignored properties, skipped data) on stderr as "note: ...".
+GaussianCloud read_scene_file(const std::string& path);
+
 // Parses argv and runs the action of the chosen subcommand, reporting errors; the exit code.
 int run_cli(CLI::App& app, const Action& action, int argc, char** argv);
 
@@ -45,5 +50,6 @@ void register_view(CLI::App& app, Action& action);
 void register_sweep(CLI::App& app, Action& action);
 void register_cluster(CLI::App& app, Action& action);
 void register_finetune(CLI::App& app, Action& action);
+void register_train(CLI::App& app, Action& action);
 
 }  // namespace vksplat::cli

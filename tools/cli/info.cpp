@@ -54,7 +54,7 @@ void register_info(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("info", "describe a scene file and what sanitising would fix");
     command->footer("Example:\n  vksplat info point_cloud.ply");
     auto path = std::make_shared<std::string>();
-    command->add_option("scene", *path, "scene file (.ply, .splat, .spz, .pt)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", *path, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->callback([&action, path] { action = [path] { return run_info(*path); }; });
 }
 

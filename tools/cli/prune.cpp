@@ -77,9 +77,7 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
 
 int run_prune(const PruneArgs& args) {
     std::vector<std::string> warnings;
-    std::vector<std::string> notes;
-    const GaussianCloud cloud = io::read_scene(args.scene, &notes);
-    for (const auto& n : notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+    const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 

@@ -5,7 +5,6 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
-#include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/render_views.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
@@ -22,8 +21,8 @@ struct RenderArgs {
 };
 
 int run_render(const RenderArgs& args) {
-    std::vector<std::string> notes, warnings;
-    const GaussianCloud cloud = io::read_ply(args.scene, &notes);
+    std::vector<std::string> warnings;
+    const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
@@ -66,7 +65,7 @@ void register_render(CLI::App& app, Action& action) {
         "Example:\n  vksplat render lego/point_cloud.ply --cameras lego/cameras.json --out renders \\\n"
         "      --views 0-12 --background 1,1,1 --images lego/images");
     auto args = std::make_shared<RenderArgs>();
-    command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->required()
         ->check(CLI::ExistingPath);

@@ -48,7 +48,7 @@ void register_view(CLI::App& app, Action& action) {
         "through the dataset cameras, +/- zoom, Esc quits. The title shows the frame time.\n"
         "Example:\n  vksplat view point_cloud.ply --cameras cameras.json");
     auto args = std::make_shared<ViewArgs>();
-    command->add_option("scene", args->scene, "scene file (.ply, .splat, .spz, .pt)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->check(CLI::ExistingPath);
     command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, else +z)")
