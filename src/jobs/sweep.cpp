@@ -16,6 +16,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/eval/comparison_sheet.hpp"
 #include "vksplat/eval/metrics.hpp"
+#include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
 #include "vksplat/jobs/render_views.hpp"
 #include "vksplat/prune/accumulate.hpp"
@@ -163,6 +164,31 @@ std::vector<double> swept_sheet_fractions(const SweepOptions& options, const std
     return chosen;
 }
 
+// The row of `pruned` (cut from `ranking` at `keep`) re-fitted with prune --recover's schedule.
+SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking, size_t keep,
+                     const std::string& method, const SweepRow& pruned, const std::vector<Camera>& cameras,
+                     const PhotoSource& photos, const Targets& targets, const SweepResult& result,
+                     const SweepOptions& options) {
+    RecoverOptions recover;
+    recover.iterations = options.recover_iterations;
+    recover.rounds = options.recover_rounds;
+    recover.method = method == kClusterMethod ? prune::ScoreMethod::blend : prune::parse_score_method(method);
+    recover.finetune.train_views = result.train_views;
+    recover.finetune.test_views = result.test_views;
+    recover.finetune.train.background = options.settings.background;
+    recover.finetune.train.sh_degree = options.settings.max_sh_degree;
+    const auto start = std::chrono::steady_clock::now();
+    const RecoverResult refit = prune_and_recover(renderer.context(), renderer, cloud, ranking,
+                                                  std::min(keep, ranking.candidates()), cameras, photos, recover);
+    SweepRow row = pruned;
+    row.method = method + kRecoverSuffix;
+    row.recover_seconds = seconds_since(start);
+    row.recover_iterations = options.recover_iterations;
+    row.measure = sweep_detail::measure_model(renderer, refit.cloud, targets, options);
+    row.delta_psnr = row.measure.psnr - result.unpruned.psnr;
+    return row;
+}
+
 }  // namespace
 
 std::string fraction_label(double fraction) {
@@ -188,6 +214,7 @@ std::string best_method(const std::vector<SweepRow>& rows) {
     std::vector<std::string> order;
     std::map<std::string, std::pair<double, size_t>> sums;
     for (const SweepRow& row : rows) {
+        if (row.method.ends_with(kRecoverSuffix)) continue;
         if (std::find(order.begin(), order.end(), row.method) == order.end()) order.push_back(row.method);
         if (row.fraction <= 0) continue;
         sums[row.method].first += row.measure.psnr;
@@ -252,7 +279,10 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     // Every fraction the lossless pass alone covers keeps the same model, whatever the method.
     std::optional<ModelMeasure> lossless_only;
     const size_t total_rows = (methods.size() + (options.cluster ? 1 : 0)) * fractions.size();
+    std::optional<PhotoSource> photos;
+    if (options.recover_iterations > 0) photos = photos_in_folder(options.images_dir, options.settings.background);
     const auto sweep_ranking = [&](const std::string& method, const prune::Ranking& ranking) {
+        std::vector<SweepRow> recovered;
         for (double fraction : fractions) {
             if (progress.step) progress.step("sweep", result.rows.size(), total_rows);
             const size_t keep = kept_count(cloud.size(), fraction);
@@ -271,7 +301,13 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             row.delta_psnr = row.measure.psnr - result.unpruned.psnr;
             result.rows.push_back(row);
             if (progress.row) progress.row(result.rows.back());
+            if (photos && fraction > 0) {
+                recovered.push_back(recover_row(renderer, cloud, ranking, keep, method, row, cameras, *photos, targets,
+                                                result, options));
+                if (progress.row) progress.row(recovered.back());
+            }
         }
+        result.rows.insert(result.rows.end(), recovered.begin(), recovered.end());
     };
     for (prune::ScoreMethod method : methods)
         sweep_ranking(std::string(prune::to_string(method)),

@@ -61,17 +61,18 @@ void add_table(eval::HtmlReport& report, const SweepResult& result) {
     std::vector<std::vector<std::string>> rows;
     const ModelMeasure& u = result.unpruned;
     rows.push_back({"unpruned", "-", "0", std::to_string(u.gaussians), megabytes(u.bytes), format("%.3f", u.psnr),
-                    "0", format("%.4f", u.ssim), "inf", "1", format("%.2f", u.ms_per_frame)});
+                    "0", format("%.4f", u.ssim), "inf", "1", format("%.2f", u.ms_per_frame), "-"});
     for (const SweepRow& row : result.rows) {
         const ModelMeasure& m = row.measure;
         rows.push_back({row.method, fraction_label(row.fraction),
                         format("%.4f", row.dropped), std::to_string(m.gaussians), megabytes(m.bytes),
                         format("%.3f", m.psnr), format("%+.3f", row.delta_psnr), format("%.4f", m.ssim),
                         format("%.2f", m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
-                        format("%.2f", m.ms_per_frame)});
+                        format("%.2f", m.ms_per_frame),
+                        row.recover_iterations ? format("%.1f", row.recover_seconds) : std::string("-")});
     }
     report.add_table({"method", "fraction", "dropped", "Gaussians", "MB", "PSNR", "ΔPSNR", "SSIM",
-                      "PSNR vs unpruned", "SSIM vs unpruned", "ms/frame"},
+                      "PSNR vs unpruned", "SSIM vs unpruned", "ms/frame", "re-fit s"},
                      std::move(rows));
 }
 

@@ -153,7 +153,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     ASSERT_EQ(csv.size(), 1 + result.rows.size());
     EXPECT_EQ(csv[0], (std::vector<std::string>{"method", "fraction", "dropped", "gaussians", "bytes", "megabytes",
                                                 "psnr", "delta_psnr", "ssim", "psnr_vs_unpruned", "ssim_vs_unpruned",
-                                                "ms_per_frame"}));
+                                                "ms_per_frame", "recover_iterations", "recover_seconds"}));
     const size_t candidates = n - result.lossless_dropped;
     for (size_t m = 0; m < methods.size(); ++m)
         for (size_t f = 0; f < fractions.size(); ++f) {
@@ -161,7 +161,8 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
             const jobs::SweepRow& row = result.rows[i];
             const auto& cells = csv[1 + i];
             SCOPED_TRACE(methods[m] + " at " + std::to_string(fractions[f]));
-            ASSERT_EQ(cells.size(), 12u);
+            ASSERT_EQ(cells.size(), 14u);
+            EXPECT_EQ(cells[12], "0") << "prune-only rows were not re-fitted";
             EXPECT_EQ(cells[0], methods[m]);
             EXPECT_EQ(std::stod(cells[1]), fractions[f]);
             EXPECT_EQ(std::stoul(cells[3]), row.measure.gaussians);
@@ -250,6 +251,35 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     EXPECT_NE(html.find("For the best method, " + best), std::string::npos);
     EXPECT_NE(html.find("sweep.csv"), std::string::npos);
     EXPECT_EQ(count(html, "<tr>"), 1 + 1 + result.rows.size() + 1 + 3) << "sweep table with unpruned, SH table";
+}
+
+TEST_F(Sweep, RecoverAddsARefittedRowBesideEachPrunedOne) {
+    const fs::path out = dir / "out";
+    auto quick = options(out);
+    quick.methods = {prune::ScoreMethod::blend};
+    quick.fractions = {0, 0.8};
+    quick.compare_scoring_cost = false;
+    quick.recover_iterations = 60;
+    quick.recover_rounds = 1;
+    const jobs::SweepResult result = jobs::sweep_scene(*renderer, cloud, cameras, quick, {});
+    // Prune-only rows first, then the re-fitted one; fraction 0 is not re-fitted.
+    ASSERT_EQ(result.rows.size(), 3u);
+    const jobs::SweepRow& pruned = result.rows[1];
+    const jobs::SweepRow& refit = result.rows[2];
+    EXPECT_EQ(refit.method, std::string("blend") + jobs::kRecoverSuffix);
+    EXPECT_EQ(refit.fraction, 0.8);
+    EXPECT_EQ(refit.measure.gaussians, pruned.measure.gaussians);
+    EXPECT_EQ(refit.recover_iterations, 60u);
+    EXPECT_GT(refit.recover_seconds, 0.0);
+    EXPECT_GT(refit.measure.psnr, pruned.measure.psnr + 1.0) << "re-fitting recovers part of what pruning lost";
+    EXPECT_EQ(result.best_method, "blend") << "re-fitted rows do not compete for the sheets";
+    const auto csv = read_csv(out / "sweep.csv");
+    ASSERT_EQ(csv.size(), 4u);
+    EXPECT_EQ(csv[3][0], "blend+recover");
+    EXPECT_EQ(csv[3][12], "60");
+    // Its own curve in the charts, and its re-fit time in the report's table.
+    EXPECT_EQ(count(read_text(out / "charts" / "psnr_vs_fraction.svg"), "class=\"series\""), 2u);
+    EXPECT_NE(read_text(result.report).find("re-fit s"), std::string::npos);
 }
 
 TEST_F(Sweep, RefusesBadOptionsAndEarlierResultsBeforeAnyWork) {

@@ -7,7 +7,6 @@
 #include "commands.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
-#include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/sweep.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
@@ -25,6 +24,8 @@ struct SweepArgs {
     std::vector<float> background{0, 0, 0};
     uint64_t seed = 0;
     bool force = false;
+    uint64_t recover = 0;
+    int recover_rounds = 3;
     ClusterStageArgs cluster;  // the cluster method's stages 1-6
 };
 
@@ -39,7 +40,7 @@ void print_row(const jobs::SweepRow& row) {
 
 int run_sweep(const SweepArgs& args) {
     std::vector<std::string> warnings;
-    const GaussianCloud cloud = io::read_ply(args.scene);
+    const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
@@ -73,6 +74,8 @@ int run_sweep(const SweepArgs& args) {
     options.timing_repetitions = args.timing_reps;
     options.compare_scoring_cost = !args.no_scoring_cost;
     options.sheet_fractions = args.sheet_fractions;
+    options.recover_iterations = args.recover;
+    options.recover_rounds = args.recover_rounds;
     options.scene_label = args.scene;
     options.out_dir = args.out;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
@@ -118,7 +121,7 @@ void register_sweep(CLI::App& app, Action& action) {
         "The cluster method renders and segments up to 50 of the training views first (see vksplat cluster);\n"
         "the options of its stages are those of vksplat cluster, with the same defaults.");
     auto args = std::make_shared<SweepArgs>();
-    command->add_option("scene", args->scene, "scene file (.ply)")->required()->check(CLI::ExistingFile);
+    command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->required()
         ->check(CLI::ExistingPath);
@@ -159,6 +162,13 @@ void register_sweep(CLI::App& app, Action& action) {
         ->delimiter(',')
         ->expected(3);
     command->add_option("--seed", args->seed, "seed of the random method");
+    command->add_option("--recover", args->recover,
+                        "also re-fit every pruned model to the photos for N iterations (prune --recover's schedule) "
+                        "and add it as method <name>+recover; needs --images")
+        ->check(CLI::NonNegativeNumber);
+    command->add_option("--recover-rounds", args->recover_rounds, "prune-re-fit rounds of each --recover point")
+        ->capture_default_str()
+        ->check(CLI::Range(1, 20));
     command->add_flag("--force", args->force, "overwrite the results of an earlier sweep in the folder");
     auto* cluster = command->add_option_group("cluster method", "with --methods ...,cluster: its stages' options "
                                                                  "(vksplat cluster; the same defaults)");

@@ -57,6 +57,12 @@ struct SweepOptions {
     std::vector<double> sheet_fractions{0.5, 0.8, 0.9};
     float sheet_max_error = 0.1f;              // top of the heat maps' colour bar (mean abs error)
     std::string scene_label;                   // names the scene in the report, e.g. its path
+    // Re-fit every pruned model (fraction above 0) to the photos for this many iterations, with
+    // prune --recover's schedule (jobs/prune_recover.hpp; rounds after the first rank cluster rows
+    // by blend weight), and add its row beside the prune-only one as method "<method>+recover".
+    // 0: prune only. Each re-fit costs its iterations: on lavapipe, seconds per iteration.
+    uint64_t recover_iterations = 0;
+    int recover_rounds = 3;
     std::filesystem::path out_dir;
     io::WriteMode mode = io::WriteMode::refuse_existing;
 };
@@ -82,7 +88,12 @@ struct SweepRow {
     double dropped = 0;                // really dropped: 1 - gaussians / unpruned gaussians
     double delta_psnr = 0;             // psnr - the unpruned scene's psnr (both against the photos)
     ModelMeasure measure;
+    uint64_t recover_iterations = 0;   // of a "+recover" row
+    double recover_seconds = 0;        // its re-fit's wall time (all rounds)
 };
+
+// The suffix of re-fitted rows' method names.
+inline constexpr const char* kRecoverSuffix = "+recover";
 
 struct ShDegreeMeasure {
     int degree = 0;
@@ -126,8 +137,9 @@ std::vector<double> default_sweep_fractions();
 // smaller than their number.
 std::vector<size_t> spread_views(const std::vector<size_t>& views, size_t count);
 
-// The method with the highest PSNR against the photos averaged over the swept fractions above 0
-// (the first in the rows' order on a tie); the rows' first method when no fraction is above 0.
+// The prune-only method with the highest PSNR against the photos averaged over the swept fractions
+// above 0 (the first in the rows' order on a tie); the rows' first method when no fraction is
+// above 0. Re-fitted rows do not compete: the sheets show what pruning alone leaves.
 std::string best_method(const std::vector<SweepRow>& rows);
 
 // Runs the sweep and writes its files into options.out_dir (created if missing). Refuses, before
