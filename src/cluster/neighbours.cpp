@@ -5,32 +5,16 @@
 #include <cmath>
 #include <numeric>
 
-#include <nanoflann.hpp>
+#include "scene/point_tree.hpp"
 
 namespace vksplat::cluster {
-namespace {
-
-// nanoflann's view of the centres: no copy.
-struct Centres {
-    std::span<const float> xyz;
-    size_t kdtree_get_point_count() const { return xyz.size() / 3; }
-    float kdtree_get_pt(size_t index, size_t dim) const { return xyz[index * 3 + dim]; }
-    template <class Box>
-    bool kdtree_get_bbox(Box&) const {
-        return false;
-    }
-};
-
-using Tree = nanoflann::KDTreeSingleIndexAdaptor<nanoflann::L2_Simple_Adaptor<float, Centres>, Centres, 3, uint32_t>;
-
-}  // namespace
 
 NearestDistanceStats nearest_distance_stats(std::span<const float> positions, size_t sample) {
     const size_t n = positions.size() / 3;
     NearestDistanceStats stats;
     if (n < 2 || sample == 0) return stats;
-    const Centres centres{positions};
-    const Tree tree(3, centres, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    const PointSpan centres{positions};
+    const PointTree tree(3, centres, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     const size_t count = std::min(sample, n);
     std::vector<double> distances;
     distances.reserve(count);
@@ -57,8 +41,8 @@ double auto_delta(const NearestDistanceStats& stats) { return 2.0 * stats.median
 size_t for_each_neighbour_pair(std::span<const float> positions, const NeighbourParams& params, const PairSink& sink) {
     const size_t n = positions.size() / 3;
     if (n < 2 || params.max_neighbours == 0 || !(params.delta > 0)) return 0;
-    const Centres centres{positions};
-    const Tree tree(3, centres, nanoflann::KDTreeSingleIndexAdaptorParams(16));
+    const PointSpan centres{positions};
+    const PointTree tree(3, centres, nanoflann::KDTreeSingleIndexAdaptorParams(16));
     const size_t k = std::min(params.max_neighbours + 1, n);  // +1: the centre finds itself
     const float delta_squared = params.delta * params.delta;
     const size_t batch = std::max<size_t>(1, params.batch_size);
