@@ -1,5 +1,5 @@
-// COLMAP's binary model (little-endian): cameras.bin and images.bin as COLMAP's
-// WriteCamerasBinary/WriteImagesBinary lay them out.
+// COLMAP's binary model (little-endian): cameras.bin, images.bin and points3D.bin as COLMAP's
+// WriteCamerasBinary/WriteImagesBinary/WritePoints3DBinary lay them out.
 #include <fstream>
 
 #include "io/byte_order.hpp"
@@ -103,6 +103,21 @@ std::vector<ColmapImage> read_colmap_images_binary(const std::filesystem::path& 
         images.push_back(std::move(image));
     }
     return images;
+}
+
+void read_colmap_points_binary(const std::filesystem::path& path, std::vector<float>& positions,
+                               std::vector<float>& colors) {
+    BinaryFile file(path);
+    const auto count = file.read<uint64_t>("the point count");
+    for (uint64_t index = 0; index < count; ++index) {
+        const std::string what = "point " + std::to_string(index) + " of " + std::to_string(count);
+        file.read<uint64_t>(what);  // the point id
+        for (int k = 0; k < 3; ++k) positions.push_back(static_cast<float>(file.read<double>(what)));
+        for (int k = 0; k < 3; ++k) colors.push_back(float(file.read<uint8_t>(what)) / 255.0f);
+        file.read<double>(what);  // the reprojection error
+        // Its track (image id, 2D point index as int32 each), which initialisation does not need.
+        file.skip(file.read<uint64_t>(what), 8, what);
+    }
 }
 
 }  // namespace vksplat::io::detail

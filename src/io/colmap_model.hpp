@@ -29,6 +29,11 @@ struct ColmapModel {
 };
 
 // Each throws InputError naming the file, and the line or byte where it went wrong.
+// points3D readers append position (3 floats) and colour (3 floats in [0, 1]) per point.
+void read_colmap_points_text(const std::filesystem::path& path, std::vector<float>& positions,
+                             std::vector<float>& colors);
+void read_colmap_points_binary(const std::filesystem::path& path, std::vector<float>& positions,
+                               std::vector<float>& colors);
 std::map<uint32_t, ColmapIntrinsics> read_colmap_cameras_text(const std::filesystem::path& path);
 std::vector<ColmapImage> read_colmap_images_text(const std::filesystem::path& path);
 std::map<uint32_t, ColmapIntrinsics> read_colmap_cameras_binary(const std::filesystem::path& path);

@@ -69,4 +69,22 @@ std::vector<ColmapImage> read_colmap_images_text(const std::filesystem::path& pa
     return images;
 }
 
+void read_colmap_points_text(const std::filesystem::path& path, std::vector<float>& positions,
+                             std::vector<float>& colors) {
+    std::ifstream in = open_text(path);
+    std::string line;
+    for (size_t number = 1; std::getline(in, line); ++number) {
+        if (!is_content(line)) continue;
+        std::istringstream fields(line);
+        uint64_t id = 0;
+        double x, y, z;
+        int r, g, b;
+        if (!(fields >> id >> x >> y >> z >> r >> g >> b) || r < 0 || r > 255 || g < 0 || g > 255 || b < 0 || b > 255)
+            throw InputError(path.string(), "line " + std::to_string(number) +
+                                                ": expected POINT3D_ID X Y Z R G B (colours 0..255) ERROR TRACK[]");
+        for (double v : {x, y, z}) positions.push_back(static_cast<float>(v));
+        for (int v : {r, g, b}) colors.push_back(float(v) / 255.0f);
+    }
+}
+
 }  // namespace vksplat::io::detail
