@@ -23,22 +23,10 @@
 #include "vksplat/prune/accumulate.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
+#include "npy_photo.hpp"
+
 using namespace vksplat;
-
-namespace {
-
-io::ImageRGB read_npy_photo(const std::filesystem::path& folder, const Camera& camera) {
-    const auto path = folder / (std::filesystem::path(camera.name).stem().string() + ".npy");
-    const io::NpyArray array = io::read_npy(path);
-    if (array.shape.size() != 3 || array.shape[2] != 3)
-        throw InputError(path.string(), "expected uint8 [H, W, 3]");
-    const auto bytes = array.values<uint8_t>();
-    io::ImageRGB image{int(array.shape[1]), int(array.shape[0]), std::vector<float>(bytes.size())};
-    for (size_t i = 0; i < bytes.size(); ++i) image.rgb[i] = float(bytes[i]) / 255.0f;
-    return image;
-}
-
-}  // namespace
+using bench::read_npy_photo;
 
 int main(int argc, char** argv) {
     CLI::App app{"refit_bench: re-fit a scene to its photos on the GPU and report quality, time and memory"};

@@ -26,6 +26,8 @@ layout(push_constant) uniform Push {
     Floats grads;        // out: gradients of `raw`, same layout
     Uints counters;      // the frame's counters
     Uints status;        // [0]: STEP_ bits
+    Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by (train_layout.glsl)
+    Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
 } pc;
 
 // Rotation matrix of a unit quaternion (w, x, y, z), as preprocess.comp builds it.
@@ -129,6 +131,12 @@ void main() {
         }
         const uint sg = i * SPLAT_GRAD_STRIDE;
         const vec2 dl_dmean = vec2(pc.splat_grads.v[sg + SPLAT_GRAD_MEAN], pc.splat_grads.v[sg + SPLAT_GRAD_MEAN + 1u]);
+        // The reference densifies by the gradient of the mean in NDC (pixels = (ndc + 1) size / 2 - 0.5),
+        // so its threshold of 0.0002 holds at any resolution.
+        const uint d = i * DENSIFY_STRIDE;
+        pc.densify.v[d + DENSIFY_GRAD_SUM] += length(dl_dmean * 0.5 * vec2(cam.size.xy));
+        pc.densify.v[d + DENSIFY_VIEWS] += 1.0;
+        pc.densify.v[d + DENSIFY_MAX_RADIUS] = max(pc.densify.v[d + DENSIFY_MAX_RADIUS], pc.means_depth.v[i].w);
         const vec3 dl_dconic = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_CONIC], pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 1u],
                                     pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 2u]);
         const float dl_dopacity = pc.splat_grads.v[sg + SPLAT_GRAD_OPACITY];

@@ -20,6 +20,14 @@ const uint SPLAT_GRAD_CONIC = 2u;
 const uint SPLAT_GRAD_OPACITY = 5u;
 const uint SPLAT_GRAD_COLOR = 6u;
 
+// What densification decides by, per Gaussian (floats), summed over the steps since the last
+// densification: the NDC gradient norm of its projected mean, the views it was drawn in, and the
+// largest radius in pixels it had.
+const uint DENSIFY_STRIDE = 3u;
+const uint DENSIFY_GRAD_SUM = 0u;
+const uint DENSIFY_VIEWS = 1u;
+const uint DENSIFY_MAX_RADIUS = 2u;
+
 // Bits of the step's status word: why Adam skips this step.
 const uint STEP_NONFINITE = 1u;     // some gradient was NaN or infinite
 const uint STEP_OVERFLOWED = 2u;    // the view needed more tile entries than the buffers hold

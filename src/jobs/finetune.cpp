@@ -7,7 +7,6 @@
 #include <cmath>
 #include <map>
 #include <numeric>
-#include <random>
 
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/view_selection.hpp"
@@ -28,18 +27,17 @@ double median(std::vector<double> values) {
     return *middle;
 }
 
-// The training view of step `iteration`: the reference walks a fresh random permutation of the
-// training views each epoch. Each epoch's permutation comes from the seed and the epoch alone, so
-// a resumed run continues the same order.
-size_t view_of_step(uint64_t iteration, uint64_t seed, const std::vector<size_t>& views) {
-    const uint64_t epoch = iteration / views.size();
-    std::vector<size_t> order = views;
-    std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + epoch);
-    std::shuffle(order.begin(), order.end(), rng);
-    return order[iteration % views.size()];
-}
-
 }  // namespace
+
+train::Photo training_photo(const PhotoSource& photos, const Camera& camera) {
+    const io::ImageRGB image = photos(camera);
+    if (image.width != camera.width || image.height != camera.height)
+        throw InputError("photo of camera '" + camera.name + "'",
+                         "is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                             " but the camera is " + std::to_string(camera.width) + "x" +
+                             std::to_string(camera.height));
+    return train::Photo::from_image(image);
+}
 
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
@@ -59,14 +57,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     // Every photo is read and checked before the first step: a bad one found late would waste the run.
     std::map<size_t, train::Photo> train_photos;
     for (size_t view : result.train_views) {
-        const Camera& camera = cameras[view];
-        const io::ImageRGB image = photos(camera);
-        if (image.width != camera.width || image.height != camera.height)
-            throw InputError("photo of camera '" + camera.name + "'",
-                             "is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
-                                 " but the camera is " + std::to_string(camera.width) + "x" +
-                                 std::to_string(camera.height));
-        train_photos.emplace(view, train::Photo::from_image(image));
+        train_photos.emplace(view, training_photo(photos, cameras[view]));
     }
 
     train::TrainOptions train_options = options.train;
@@ -99,7 +90,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
             break;
         }
         const uint64_t iteration = trainer->iteration();
-        const size_t view = view_of_step(iteration, options.seed, result.train_views);
+        const size_t view = training_view(iteration, options.seed, result.train_views);
         const train::StepResult step = trainer->step(cameras[view], train_photos.at(view));
         step_times.push_back(step.gpu_milliseconds);
         for (const auto& stage : step.stages) {

@@ -19,6 +19,7 @@ struct ParameterLayout {
 };
 
 constexpr uint32_t kSplatGradStride = 9;  // SPLAT_GRAD_STRIDE
+constexpr uint32_t kDensifyStride = 3;    // DENSIFY_STRIDE: gradient norm sum, views, max radius
 constexpr uint32_t kStepNonfinite = 1;    // STEP_NONFINITE
 constexpr uint32_t kStepOverflowed = 2;   // STEP_OVERFLOWED
 

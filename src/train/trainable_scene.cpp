@@ -43,25 +43,48 @@ GaussianCloud unpack_parameters(const std::vector<float>& packed, uint32_t count
     return cloud;
 }
 
-TrainableScene TrainableScene::upload(const gpu::Context& context, const GaussianCloud& cloud) {
-    cloud.check_consistent();
-    if (cloud.empty()) throw InputError("scene", "has no Gaussians to train");
-    if (cloud.size() * layout_of(1, cloud.sh_degree).floats_per_gaussian() > std::numeric_limits<uint32_t>::max())
-        throw InputError("scene", "too many Gaussians to train in one scene (" + std::to_string(cloud.size()) + ")");
+TrainableScene TrainableScene::allocate(const gpu::Context& context, uint32_t count, int sh_degree) {
     TrainableScene scene;
-    scene.layout = layout_of(cloud.size(), cloud.sh_degree);
-    scene.sh_degree = cloud.sh_degree;
-    scene.params = gpu::upload_buffer(context, pack_parameters(cloud), "trained parameters");
-    const uint64_t bytes = scene.layout.total() * sizeof(float);
+    scene.layout = layout_of(count, sh_degree);
+    scene.sh_degree = sh_degree;
+    // Buffers are never empty: a scene pruned to nothing still has somewhere to point.
+    const uint64_t bytes = std::max<uint64_t>(scene.layout.total(), 1) * sizeof(float);
+    scene.params = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "trained parameters");
     scene.grads = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "parameter gradients");
     scene.first_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam first moments");
     scene.second_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam second moments");
+    scene.densify = gpu::Buffer(context, std::max<uint64_t>(count, 1) * kDensifyStride * sizeof(float),
+                                gpu::MemoryKind::device, "densification sums");
     gpu::CommandStream stream(context, 0);
     stream.begin();
     stream.fill(scene.grads, 0);
-    stream.fill(scene.first_moment, 0);
-    stream.fill(scene.second_moment, 0);
+    stream.fill(scene.densify, 0);
     stream.submit_and_wait();
+    return scene;
+}
+
+TrainableScene TrainableScene::upload(const gpu::Context& context, const GaussianCloud& cloud,
+                                      const GaussianCloud* first_moment, const GaussianCloud* second_moment) {
+    cloud.check_consistent();
+    if (cloud.empty()) throw InputError("scene", "has no Gaussians to train");
+    if (cloud.size() * layout_of(1, cloud.sh_degree).floats_per_gaussian() > std::numeric_limits<uint32_t>::max())
+        throw InputError("scene", "has too many Gaussians to train (its parameters need 32-bit indices)");
+    TrainableScene scene = allocate(context, uint32_t(cloud.size()), cloud.sh_degree);
+    const auto fill = [&](const gpu::Buffer& destination, const GaussianCloud* values) {
+        gpu::CommandStream stream(context, 0);
+        stream.begin();
+        if (!values) {
+            stream.fill(destination, 0);
+            stream.submit_and_wait();
+            return;
+        }
+        const gpu::Buffer staged = gpu::upload_buffer(context, pack_parameters(*values), "trainer upload");
+        stream.copy(staged, destination, staged.size());
+        stream.submit_and_wait();
+    };
+    fill(scene.params, &cloud);
+    fill(scene.first_moment, first_moment);
+    fill(scene.second_moment, second_moment);
     return scene;
 }
 

@@ -14,13 +14,19 @@ struct TrainableScene {
     ParameterLayout layout;
     int sh_degree = 0;
     gpu::Buffer params, grads, first_moment, second_moment;
+    gpu::Buffer densify;  // kDensifyStride floats per Gaussian, summed by preprocess_backward
 
-    // Uploads a consistent cloud (the caller sanitises it); the moments start at zero.
-    static TrainableScene upload(const gpu::Context& context, const GaussianCloud& cloud);
+    // Uploads a consistent cloud (the caller sanitises it); the moments (unless given, in the
+    // cloud's layout) and the densification sums start at zero.
+    static TrainableScene upload(const gpu::Context& context, const GaussianCloud& cloud,
+                                 const GaussianCloud* first_moment = nullptr, const GaussianCloud* second_moment = nullptr);
+    // Room for `count` Gaussians: parameters and moments uninitialised, gradients and
+    // densification sums zero.
+    static TrainableScene allocate(const gpu::Context& context, uint32_t count, int sh_degree);
     // The parameters (or any buffer of this layout) as a cloud.
     GaussianCloud download(const gpu::Context& context, const gpu::Buffer& buffer) const;
     GaussianCloud download(const gpu::Context& context) const { return download(context, params); }
-    uint64_t device_bytes() const { return params.size() * 4; }
+    uint64_t device_bytes() const { return params.size() * 4 + densify.size(); }
     VkDeviceAddress sh_address() const { return params.address() + layout.sh() * sizeof(float); }
 };
 

@@ -10,6 +10,7 @@
 #include "gpu/command_stream.hpp"
 #include "gpu/transfer.hpp"
 #include "render/frame_layout.hpp"
+#include "train/densify.hpp"
 #include "train/differentiable_renderer.hpp"
 #include "train/loss_passes.hpp"
 #include "train/train_passes.hpp"
@@ -61,6 +62,7 @@ struct Trainer::Impl {
     DifferentiableRenderer renderer;
     LossPasses loss;
     gpu::ComputePipeline adam;
+    DensifyPasses densify;
     gpu::CommandStream stream;
     gpu::Buffer photo_upload, photo, pixel_grad;
     uint32_t pixel_capacity = 0;
@@ -73,6 +75,7 @@ struct Trainer::Impl {
           renderer(c),
           loss(c),
           adam(c, gpu::spirv_words(adam_step_spv), sizeof(AdamPush), {}, "adam_step"),
+          densify(c),
           stream(c),
           sh_degree(o.sh_degree) {}
 
@@ -199,6 +202,19 @@ uint64_t Trainer::iteration() const { return impl_->iteration; }
 uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
 double Trainer::position_learning_rate() const { return impl_->position_rate(); }
 void Trainer::set_sh_degree(int degree) { impl_->sh_degree = std::clamp(degree, 0, 3); }
+int Trainer::sh_degree() const { return std::min(impl_->sh_degree, impl_->scene.sh_degree); }
+
+DensifyReport Trainer::densify(const DensifyRules& rules) {
+    auto& d = *impl_;
+    const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
+    TrainableScene next = d.densify.apply(d.scene, plan);
+    d.scene = std::move(next);
+    return plan.report;
+}
+
+// The densification sums carry on: the reference resets opacity without touching them.
+void Trainer::reset_opacity(double max_opacity) { impl_->densify.reset_opacity(impl_->scene, max_opacity); }
+
 const SanitizeReport& Trainer::sanitize_report() const { return impl_->report; }
 size_t Trainer::size() const { return impl_->scene.layout.count; }
 GaussianCloud Trainer::cloud() const { return impl_->scene.download(impl_->context); }
@@ -249,17 +265,10 @@ void Trainer::Impl::load_checkpoint(const std::filesystem::path& path) {
             throw InputError(path.string(), "truncated checkpoint (" + std::to_string(header[0]) +
                                                 " Gaussians expected)");
     }
-    GaussianCloud cloud = unpack_parameters(arrays[0], layout.count, int(header[1]));
-    scene = TrainableScene::upload(context, cloud);
-    const auto upload_into = [&](const gpu::Buffer& destination, const std::vector<float>& values) {
-        gpu::Buffer staged = gpu::upload_buffer(context, values, "checkpoint moments");
-        gpu::CommandStream copy(context, 0);
-        copy.begin();
-        copy.copy(staged, destination, floats * sizeof(float));
-        copy.submit_and_wait();
-    };
-    upload_into(scene.first_moment, arrays[1]);
-    upload_into(scene.second_moment, arrays[2]);
+    const int degree = int(header[1]);
+    const GaussianCloud first = unpack_parameters(arrays[1], layout.count, degree);
+    const GaussianCloud second = unpack_parameters(arrays[2], layout.count, degree);
+    scene = TrainableScene::upload(context, unpack_parameters(arrays[0], layout.count, degree), &first, &second);
     iteration = header[2];
     skipped = header[3];
     report.input_count = layout.count;

@@ -191,6 +191,27 @@ expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "
   --background 1,1,1 -o "$work/recovered.ply"
 expect prune-recover-needs-photos 2 "--recover: re-fits to the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 -o "$work/recovered_nophotos.ply"
+# Every command that reads a scene reads every format (here SPZ).
+expect render-reads-spz 0 "wrote 1 views" -- "$vksplat" render "$work/demo.spz" --cameras "$work/cameras.json" \
+  --out "$work/render_spz"
+expect bench-reads-spz 0 "mean of per-view medians" -- "$vksplat" bench "$work/demo.spz" --cameras "$work/cameras.json" \
+  --reps 1 --warmup 0
+expect prune-reads-spz 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo.spz" --cameras "$work/cameras.json" \
+  --method opacity --ratio 0.5 -o "$work/half_from_spz.ply"
+# Sweep --recover: a re-fitted row beside the pruned one.
+expect sweep-recover 0 "blend+recover" -- "$vksplat" sweep "$work/demo.spz" --cameras "$work/three.json" \
+  --images "$work/photos3" --background 1,1,1 --out "$work/sweep_recover" --methods blend --fractions 0.5 \
+  --recover 5 --recover-rounds 1 --timing-reps 0 --no-scoring-cost
+# Train: an INRIA folder (cameras.json beside images/), a few steps from random points, then the
+# refusal to overwrite its outputs.
+mkdir -p "$work/train_data" && cp "$work/three.json" "$work/train_data/cameras.json" &&
+  cp -r "$work/photos3" "$work/train_data/images"
+expect train 0 "test views (3): PSNR" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20 \
+  --white-background --quiet
+[ -f "$work/trained/point_cloud.ply" ] && [ -f "$work/trained/metrics.json" ] && [ -f "$work/trained/cameras.json" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: train outputs missing"; }
+expect train-refuses-overwrite 2 "already exists" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20
+expect train-not-a-dataset 2 "holds neither a COLMAP model" -- "$vksplat" train "$work/photos3" -o "$work/trained2"
 sed 's/"width": 80/"width": 81/' "$work/cameras.json" >"$work/wider.json"
 expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$vksplat" render "$work/demo/demo.ply" \
   --cameras "$work/wider.json" --out "$work/z" --images "$work/photos"

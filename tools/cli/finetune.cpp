@@ -1,11 +1,10 @@
 // vksplat finetune: re-fits a scene (a pruned one, typically) to its photos on the GPU.
-#include <atomic>
-#include <csignal>
 #include <cstdio>
 #include <memory>
 #include <unistd.h>
 
 #include "commands.hpp"
+#include "interrupt.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -25,11 +24,6 @@ struct FinetuneArgs {
     bool resume = false, force = false, quiet = false;
 };
 
-// Ctrl-C asks the run to stop after the step in flight; the job then writes its checkpoint. A
-// signal handler can only reach a flag with static storage, so this is the one such flag.
-std::atomic<bool> interrupt_requested{false};
-extern "C" void request_stop(int) { interrupt_requested.store(true); }
-
 void print_status(const jobs::FinetuneStatus& s, bool terminal) {
     std::fprintf(stderr, "%siteration %llu/%llu  loss %.4f  train PSNR %.2f dB  %zu Gaussians  %.0f s, %.0f s left%s",
                  terminal ? "\r" : "", static_cast<unsigned long long>(s.iteration),
@@ -44,8 +38,7 @@ int run_finetune(const FinetuneArgs& args) {
     if (mode == io::WriteMode::refuse_existing && std::filesystem::exists(args.out))
         throw InputError(args.out, "already exists; not overwritten (--force replaces it)");
     std::vector<std::string> notes;
-    const GaussianCloud cloud = io::read_scene(args.scene, &notes);
-    for (const auto& n : notes) std::fprintf(stderr, "note: %s\n", n.c_str());
+    const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &notes);
 
     jobs::FinetuneOptions options;
@@ -59,7 +52,7 @@ int run_finetune(const FinetuneArgs& args) {
                                                  : std::filesystem::path(args.checkpoint);
     options.checkpoint_every = args.checkpoint_every;
     options.resume = args.resume;
-    options.stop = &interrupt_requested;
+    options.stop = &stop_on_interrupt();
     if (options.test_views.empty()) options.test_views = jobs::default_test_views(cameras.size());
     if (options.train_views.empty()) options.train_views = jobs::default_train_views(cameras.size(), options.test_views);
     std::vector<Camera> test_cameras;
@@ -75,8 +68,6 @@ int run_finetune(const FinetuneArgs& args) {
         return prune::measure_quality(renderer, scene, views, settings, true);
     };
 
-    std::signal(SIGINT, request_stop);
-    std::signal(SIGTERM, request_stop);
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
     std::fprintf(stderr, "re-fitting %zu Gaussians on %s: %llu iterations\n", cloud.size(), context.info().name.c_str(),
                  static_cast<unsigned long long>(args.iterations));

@@ -18,5 +18,6 @@ int main(int argc, char** argv) {
     register_sweep(app, action);
     register_cluster(app, action);
     register_finetune(app, action);
+    register_train(app, action);
     return run_cli(app, action, argc, argv);
 }

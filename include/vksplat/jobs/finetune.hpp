@@ -26,8 +26,14 @@ namespace vksplat::jobs {
 // The photo of a camera, composited on the background where it has alpha. Throws InputError
 // naming the file when it is missing or unreadable.
 using PhotoSource = std::function<io::ImageRGB(const Camera&)>;
-// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb.
-PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background);
+// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb, and
+// resized (area averaging) to the camera's size where `resize` is set and they differ.
+PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background,
+                             bool resize = false);
+
+// The photo of `camera` for training, read through `photos`: refused (InputError naming the camera)
+// when its size is not the camera's.
+train::Photo training_photo(const PhotoSource& photos, const Camera& camera);
 
 // The quality of a scene on the held-out views (prune::measure_quality against the photos, say).
 using QualityProbe = std::function<prune::Quality(const GaussianCloud&)>;

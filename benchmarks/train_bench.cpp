@@ -1,0 +1,102 @@
+// train_bench: the training job (jobs::train_scene, what `vksplat train` runs) on a GPU host that
+// has a Vulkan driver and no image codecs. Cameras, split and starting points come from the data
+// folder as `vksplat train` reads it; the photos come as <name>.npy (uint8 [H, W, 3], made there by
+// benchmarks/photos_to_npy.py). Prints progress, the test PSNR, time, Gaussians and peak device
+// memory, and with --renders writes each test view's render as float32 .npy so that
+// benchmarks/test_view_metrics.py can score SSIM the reference's way.
+//
+//   train_bench bonsai --photos npy/ --out run/ --max-gaussians 400000
+//   train_bench lego --photos npy/ --out run/ --background 1,1,1
+#include <CLI/CLI.hpp>
+
+#include <cmath>
+#include <cstdio>
+
+#include "vksplat/error.hpp"
+#include "vksplat/eval/metrics.hpp"
+#include "vksplat/io/npy.hpp"
+#include "vksplat/jobs/train_scene.hpp"
+#include "vksplat/render/renderer.hpp"
+
+#include "npy_photo.hpp"
+
+using namespace vksplat;
+using bench::read_npy_photo;
+
+int main(int argc, char** argv) {
+    CLI::App app{"train_bench: train a scene from photos on the GPU and report quality, time and memory"};
+    std::string data_dir, photos_dir, out_dir, renders_dir, device;
+    std::vector<float> background{0, 0, 0};
+    jobs::TrainRecipe recipe;
+    size_t max_gaussians = 0;
+    app.add_option("data", data_dir, "COLMAP, NeRF-synthetic or INRIA folder, as vksplat train takes")->required();
+    app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
+    app.add_option("--out", out_dir, "output folder (point_cloud.ply, metrics.json, ...)")->required();
+    app.add_option("--renders", renders_dir, "write the test views' renders here as float32 .npy");
+    app.add_option("--background", background)->delimiter(',')->expected(3);
+    app.add_option("--iters", recipe.iterations);
+    app.add_option("--max-gaussians", max_gaussians);
+    app.add_option("--densify-until", recipe.densify_until);
+    app.add_option("--grad-threshold", recipe.densify.grad_threshold);
+    app.add_option("--max-screen-radius", recipe.max_screen_radius, "0: never pruned by screen or world size");
+    app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
+    app.add_option("--device", device);
+    CLI11_PARSE(app, argc, argv);
+    try {
+        recipe.densify.max_gaussians = max_gaussians;
+        gpu::Context context(gpu::ContextOptions{device, false, 0});
+        const jobs::TrainingData data = jobs::load_training_data(data_dir, recipe, 1.0, 0);
+        for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        std::printf("%s (%s): %zu cameras (%zu train, %zu test), %zu starting points, on %s\n", data_dir.c_str(),
+                    data.format.c_str(), data.cameras.size(), data.train_views.size(), data.test_views.size(),
+                    data.initial.size(), context.info().name.c_str());
+        std::fflush(stdout);
+
+        jobs::TrainOptions options;
+        options.recipe = recipe;
+        options.background = {background[0], background[1], background[2]};
+        options.out_dir = out_dir;
+        options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
+        RenderSettings settings;
+        settings.background = options.background;
+        const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const prune::TestViews& views) {
+            Renderer renderer(context);
+            renderer.set_scene(scene);
+            prune::Quality quality;
+            for (size_t v = 0; v < views.cameras.size(); ++v) {
+                const RenderOutput out = renderer.render(views.cameras[v], settings);
+                quality.psnr.push_back(eval::psnr(out.rgb.data(), views.targets[v].data(), out.width, out.height));
+                quality.mean_psnr += quality.psnr.back() / double(views.cameras.size());
+                if (!renders_dir.empty()) {
+                    std::filesystem::create_directories(renders_dir);
+                    const auto stem = std::filesystem::path(views.cameras[v].name).stem().string();
+                    io::write_npy(std::filesystem::path(renders_dir) / (stem + ".npy"), out.rgb.data(),
+                                  {size_t(out.height), size_t(out.width), 3}, io::WriteMode::overwrite);
+                }
+            }
+            return quality;
+        };
+        const auto progress = [last = -1.0](const jobs::TrainStatus& s) mutable {
+            if (s.seconds - last < 10.0 && s.iteration != s.iterations) return;
+            last = s.seconds;
+            std::printf("  iteration %6llu: %8zu Gaussians, loss %.4f, train PSNR %.2f dB, %.1f s, ETA %.0f s\n",
+                        static_cast<unsigned long long>(s.iteration), s.gaussians, s.loss, s.psnr, s.seconds,
+                        s.seconds_left);
+            std::fflush(stdout);
+        };
+        const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
+        const jobs::TrainResult result = jobs::train_scene(context, data, photos, options, measure, progress);
+        for (size_t view : result.distrusted_cameras)
+            std::printf("distrusted camera: %s\n", data.cameras[view].name.c_str());
+        std::printf("trained %llu iterations (skipped %llu) in %.1f s (densification %.1f s): %zu Gaussians, GPU median %.3f ms per "
+                    "iteration, peak device memory %.1f MB, scene extent %.3f\n",
+                    static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
+                    result.seconds, result.densify_seconds, result.gaussians, result.gpu_ms_per_iteration,
+                    double(result.peak_device_bytes) / 1e6, result.scene_extent);
+        std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);
+        return 0;
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 1;
+    }
+}

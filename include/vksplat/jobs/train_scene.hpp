@@ -1,0 +1,107 @@
+#pragma once
+// Trains a scene from photos: the reference 3DGS recipe (Kerbl et al. 2023, train.py) on the GPU.
+// What `vksplat train` does.
+//
+// Data: a COLMAP folder (sparse/0 with points3D.bin, .txt or .ply; photos in images/; PINHOLE or
+// SIMPLE_PINHOLE cameras, other models refused: undistort first), a NeRF-synthetic folder
+// (transforms_train.json, transforms_test.json; RGBA photos composited on the background;
+// 100,000 random points in [-1.3, 1.3]^3 to start from), or an INRIA cameras.json beside images/
+// (started from random points in the box the cameras look into).
+// The recipe, each constant in TrainRecipe: SH degree raised every 1,000 iterations; densification
+// every 100 iterations from 500 to 15,000 (train::DensifyRules); opacity reset every 3,000 (and at
+// 500 with a white background); the position rate decaying over the whole run.
+#include <array>
+#include <atomic>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vksplat/camera.hpp"
+#include "vksplat/gpu/context.hpp"
+#include "vksplat/io/write_mode.hpp"
+#include "vksplat/jobs/finetune.hpp"
+#include "vksplat/train/trainer.hpp"
+
+namespace vksplat::jobs {
+
+struct TrainRecipe {
+    uint64_t iterations = 30000;
+    int sh_degree = 3;
+    uint64_t sh_degree_interval = 1000;
+    uint64_t densify_from = 500, densify_until = 15000, densify_interval = 100;
+    uint64_t opacity_reset_interval = 3000;
+    double opacity_reset_value = 0.01;
+    double max_screen_radius = 0;       // > 0: pruned above this many pixels after the first reset (DensifyRules)
+    train::DensifyRules densify;        // threshold 0.0002, percent dense 0.01, min opacity 0.005
+    uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
+    size_t random_points = 100000;      // NeRF-synthetic and INRIA starts
+    float random_box = 1.3f;            // NeRF-synthetic start: uniform in [-box, box]^3
+};
+
+struct TrainingData {
+    std::string format;                 // "colmap", "nerf-synthetic" or "inria"
+    std::vector<Camera> cameras;
+    std::vector<size_t> train_views, test_views;
+    GaussianCloud initial;
+    std::filesystem::path images_dir;   // where the photos are found by camera name
+    std::vector<std::string> warnings;
+};
+
+// Reads cameras, the split and the starting Gaussians. `resolution_scale` (0 < s <= 1) shrinks the
+// cameras (the photos are resized to match when read). Throws InputError naming what is missing or wrong.
+TrainingData load_training_data(const std::filesystem::path& data_dir, const TrainRecipe& recipe,
+                                double resolution_scale, uint64_t seed);
+
+struct TrainOptions {
+    TrainRecipe recipe;
+    std::array<float, 3> background{0, 0, 0};
+    double resolution_scale = 1.0;
+    uint64_t seed = 0;
+    // Device memory training may hold (0: the device's budget). Growth stops where the next
+    // densification would pass it; a start that does not fit is refused before any step.
+    uint64_t memory_budget = 0;
+    std::filesystem::path out_dir;      // point_cloud.ply, cameras.json, metrics.json, checkpoint
+    io::WriteMode mode = io::WriteMode::refuse_existing;
+    uint64_t checkpoint_every = 5000;
+    bool resume = false;                // from out_dir/checkpoint
+    const std::atomic<bool>* stop = nullptr;
+};
+
+struct TrainStatus {
+    uint64_t iteration = 0, iterations = 0;
+    size_t gaussians = 0;
+    double loss = 0, psnr = 0, seconds = 0, seconds_left = 0;
+};
+
+struct TrainResult {
+    uint64_t iterations = 0, skipped = 0;
+    bool interrupted = false;
+    size_t gaussians = 0;
+    double seconds = 0;                 // wall time of this run's steps, densification included
+    double densify_seconds = 0;         // of which densification and opacity resets
+    double gpu_ms_per_iteration = 0;
+    uint64_t peak_device_bytes = 0;
+    prune::Quality test;                // on the test views against the photos
+    double scene_extent = 0;
+    std::vector<size_t> distrusted_cameras;
+    std::filesystem::path ply, cameras_json, metrics_json;
+};
+
+// A scene's quality on the test views (prune::measure_quality, say).
+using TestMeasure = std::function<prune::Quality(const GaussianCloud&, const prune::TestViews&)>;
+
+// Trains from `data` (load_training_data), the photos read through `photos` (at the cameras'
+// size), and writes the outputs into options.out_dir. Refuses existing outputs (unless
+// options.mode says overwrite) and missing or mis-sized photos before the first step.
+TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
+                        const TrainOptions& options, const TestMeasure& measure,
+                        const std::function<void(const TrainStatus&)>& progress = {});
+
+// The Gaussians a memory budget leaves room for: the trainer's bytes per Gaussian (parameters,
+// gradients, moments, frame and per-splat buffers) against the budget less the per-pixel buffers.
+size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels);
+
+}  // namespace vksplat::jobs

@@ -1,0 +1,59 @@
+#version 460
+// Densification's data movement: the new scene's Gaussian j is a copy of the old scene's
+// Gaussian sources[j] (parameters and Adam's moments, every block of train_layout.glsl), with two
+// exceptions the host's plan (src/train/densify.hpp) sets: Gaussians from fresh_from on are new,
+// so their moments start at zero, as the reference's optimizer state does; and split samples
+// (from split_from on) take the position and log-scale the host sampled for them. The host
+// decides which Gaussians to clone, split and prune from a small download (positions, scales,
+// rotations, opacities and the densification sums); the bulk of the state never leaves the device.
+#extension GL_GOOGLE_include_directive : require
+
+#include "buffers.glsl"
+#include "train_layout.glsl"
+
+layout(local_size_x = 256) in;
+
+layout(push_constant) uniform Push {
+    Floats old_params;
+    Floats old_first;
+    Floats old_second;
+    Floats new_params;
+    Floats new_first;
+    Floats new_second;
+    Uints sources;         // per new Gaussian: the old one it copies
+    Floats split_values;   // per split sample: position (3), log-scale (3)
+    uint old_count;
+    uint new_count;
+    uint fresh_from;       // new Gaussians (zero moments) from here on
+    uint split_from;       // split samples from here on
+    uint sh_floats;        // SH floats per Gaussian (3 K)
+} pc;
+
+// Copies `floats` floats of one Gaussian from old offset `from` to new offset `to`.
+void move(uint from, uint to, uint floats, bool fresh) {
+    for (uint k = 0u; k < floats; ++k) {
+        pc.new_params.v[to + k] = pc.old_params.v[from + k];
+        pc.new_first.v[to + k] = fresh ? 0.0 : pc.old_first.v[from + k];
+        pc.new_second.v[to + k] = fresh ? 0.0 : pc.old_second.v[from + k];
+    }
+}
+
+void main() {
+    const uint n = pc.old_count, m = pc.new_count;
+    for (uint j = gl_GlobalInvocationID.x; j < m; j += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        const uint i = pc.sources.v[j];
+        const bool fresh = j >= pc.fresh_from;
+        move(positions_offset(n) + 3u * i, positions_offset(m) + 3u * j, 3u, fresh);
+        move(log_scales_offset(n) + 3u * i, log_scales_offset(m) + 3u * j, 3u, fresh);
+        move(rotations_offset(n) + 4u * i, rotations_offset(m) + 4u * j, 4u, fresh);
+        move(opacities_offset(n) + i, opacities_offset(m) + j, 1u, fresh);
+        move(sh_offset(n) + pc.sh_floats * i, sh_offset(m) + pc.sh_floats * j, pc.sh_floats, fresh);
+        if (j >= pc.split_from) {
+            const uint s = 6u * (j - pc.split_from);
+            for (uint k = 0u; k < 3u; ++k) {
+                pc.new_params.v[positions_offset(m) + 3u * j + k] = pc.split_values.v[s + k];
+                pc.new_params.v[log_scales_offset(m) + 3u * j + k] = pc.split_values.v[s + 3u + k];
+            }
+        }
+    }
+}

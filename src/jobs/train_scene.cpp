@@ -1,0 +1,300 @@
+// The training job: data in, the reference recipe's loop, outputs written.
+#include "vksplat/jobs/train_scene.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include <nlohmann/json.hpp>
+
+#include "vksplat/error.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/io/sfm_points.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+#include "vksplat/train/initialize.hpp"
+#include "vksplat/train/scene_extent.hpp"
+
+namespace vksplat::jobs {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr double kReportSeconds = 0.5;
+// What training holds per Gaussian besides its SH: 11 raw parameters, 4 copies (parameters,
+// gradients, two moments); activated parameters 48, per-splat gradients 36, densification sums 12,
+// and the frame's per-Gaussian arrays (about 100 bytes) with some tile entries (8 bytes each for
+// keys and values, twice for the sort's ping-pong, ~6 per Gaussian).
+constexpr uint64_t kFixedBytesPerGaussian = 4 * 11 * 4 + 48 + 36 + 12 + 100 + 6 * 16;
+// Per pixel: the frame's colour, depth and count, the trainer's transmittance, last position,
+// pixel gradient and photo, and the loss's nine planes.
+constexpr uint64_t kBytesPerPixel = 24 + 28 + 36;
+
+Camera scaled(Camera camera, double scale) {
+    if (scale == 1.0) return camera;
+    camera.width = std::max(1, int(std::lround(camera.width * scale)));
+    camera.height = std::max(1, int(std::lround(camera.height * scale)));
+    camera.fx *= scale;
+    camera.fy *= scale;
+    camera.cx *= scale;
+    camera.cy *= scale;
+    return camera;
+}
+
+// COLMAP reads distorted models as pinholes with a warning; training on them would fit the
+// distortion into the scene, so they are refused here.
+void refuse_distortion(const std::vector<std::string>& warnings, const fs::path& where) {
+    for (const auto& warning : warnings)
+        if (warning.find("distortion") != std::string::npos)
+            throw InputError(where.string(), warning + "; training needs undistorted photos and a PINHOLE or "
+                                                       "SIMPLE_PINHOLE model (COLMAP's image_undistorter makes them)");
+}
+
+// The box random starting points fill for INRIA cameras without points: centred where the cameras
+// look together, as wide as the median camera sees at its distance from there (what the
+// photos can show). For lego this is the reference's +-1.3 box within 10%. Without a common
+// focus (parallel axes), the box around the cameras' mean as large as their spread.
+io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t count, uint64_t seed) {
+    glm::dvec3 centre(0.0);
+    for (const auto& c : cameras) centre += c.centre();
+    centre /= double(cameras.size());
+    double half = 0;
+    for (const auto& c : cameras) half = std::max(half, glm::length(c.centre() - centre));
+    if (const auto focus = train::common_focus(cameras)) {
+        std::vector<double> seen;
+        for (const auto& c : cameras)
+            seen.push_back(glm::length(c.centre() - *focus) * 0.5 * c.width / c.fx);
+        std::nth_element(seen.begin(), seen.begin() + long(seen.size() / 2), seen.end());
+        centre = *focus;
+        half = seen[seen.size() / 2];
+    }
+    io::SfmPoints points = train::random_points(count, -float(half), float(half), seed);
+    for (size_t i = 0; i < points.size(); ++i)
+        for (int k = 0; k < 3; ++k) points.positions[3 * i + k] += float(centre[k]);
+    return points;
+}
+
+nlohmann::json camera_json(const Camera& camera, size_t id, const char* split) {
+    const glm::dmat3 to_world = glm::transpose(camera.rotation);
+    const glm::dvec3 centre = camera.centre();
+    nlohmann::json rotation = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r) rotation.push_back({to_world[0][r], to_world[1][r], to_world[2][r]});
+    return {{"id", id},           {"img_name", camera.name}, {"width", camera.width}, {"height", camera.height},
+            {"position", {centre.x, centre.y, centre.z}}, {"rotation", rotation},   {"fx", camera.fx},
+            {"fy", camera.fy},    {"cx", camera.cx},         {"cy", camera.cy},        {"split", split}};
+}
+
+void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode mode) {
+    io::write_file_atomically(path, mode, [&](std::ostream& out) { out << json.dump(2) << '\n'; });
+}
+
+}  // namespace
+
+size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
+    const uint64_t per_gaussian = kFixedBytesPerGaussian + 4 * 4 * uint64_t(sh_coefficients_for_degree(sh_degree)) * 3;
+    const uint64_t per_image = pixels * kBytesPerPixel;
+    return budget > per_image ? static_cast<size_t>((budget - per_image) / per_gaussian) : 0;
+}
+
+TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& recipe, double resolution_scale,
+                                uint64_t seed) {
+    if (!(resolution_scale > 0 && resolution_scale <= 1))
+        throw InputError("--resolution-scale " + std::to_string(resolution_scale), "must lie in (0, 1]");
+    if (!fs::is_directory(data_dir)) throw InputError(data_dir.string(), "is not a folder");
+    TrainingData data;
+    io::SfmPoints points;
+    if (fs::exists(data_dir / "sparse" / "0") || fs::exists(data_dir / "sparse")) {
+        data.format = "colmap";
+        const fs::path model = fs::exists(data_dir / "sparse" / "0") ? data_dir / "sparse" / "0" : data_dir / "sparse";
+        data.cameras = io::read_colmap_cameras(model, &data.warnings);
+        refuse_distortion(data.warnings, model);
+        points = io::read_sfm_points(model);
+        data.images_dir = data_dir / "images";
+        // The reference's llffhold: every test_every-th camera by image name (read sorted) is held out.
+        for (size_t i = 0; i < data.cameras.size(); ++i)
+            (recipe.test_every > 0 && i % recipe.test_every == 0 ? data.test_views : data.train_views).push_back(i);
+    } else if (fs::exists(data_dir / "transforms_train.json")) {
+        data.format = "nerf-synthetic";
+        data.cameras = io::read_nerf_transforms(data_dir / "transforms_train.json");
+        for (size_t i = 0; i < data.cameras.size(); ++i) data.train_views.push_back(i);
+        if (fs::exists(data_dir / "transforms_test.json")) {
+            const auto test = io::read_nerf_transforms(data_dir / "transforms_test.json");
+            for (const auto& camera : test) {
+                data.test_views.push_back(data.cameras.size());
+                data.cameras.push_back(camera);
+            }
+        }
+        points = train::random_points(recipe.random_points, -recipe.random_box, recipe.random_box, seed);
+        data.images_dir = data_dir;
+    } else if (fs::exists(data_dir / "cameras.json")) {
+        data.format = "inria";
+        data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
+        const auto test = default_test_views(data.cameras.size());
+        data.test_views = test;
+        data.train_views = default_train_views(data.cameras.size(), test);
+        points = points_around_cameras(data.cameras, recipe.random_points, seed);
+        data.images_dir = data_dir / "images";
+    } else {
+        throw InputError(data_dir.string(), "holds neither a COLMAP model (sparse/0), NeRF transforms "
+                                            "(transforms_train.json) nor an INRIA cameras.json");
+    }
+    if (!fs::is_directory(data.images_dir)) throw InputError(data.images_dir.string(), "no such folder of photos");
+    if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
+    for (auto& camera : data.cameras) camera = scaled(camera, resolution_scale);
+    data.initial = train::initial_cloud(points, recipe.sh_degree);
+    return data;
+}
+
+TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
+                        const TrainOptions& options, const TestMeasure& measure,
+                        const std::function<void(const TrainStatus&)>& progress) {
+    const TrainRecipe& recipe = options.recipe;
+    TrainResult result;
+    result.ply = fs::absolute(options.out_dir / "point_cloud.ply");
+    result.cameras_json = fs::absolute(options.out_dir / "cameras.json");
+    result.metrics_json = fs::absolute(options.out_dir / "metrics.json");
+    const fs::path checkpoint = options.out_dir / "checkpoint";
+    if (options.mode == io::WriteMode::refuse_existing && !options.resume)
+        for (const auto& path : {result.ply, result.cameras_json, result.metrics_json})
+            if (fs::exists(path)) throw InputError(path.string(), "already exists; not overwritten");
+    if (options.resume && !fs::exists(checkpoint)) throw InputError(checkpoint.string(), "no checkpoint to resume from");
+    fs::create_directories(options.out_dir);
+
+    // Photos first: a missing or mis-sized one is reported before any step.
+    std::vector<train::Photo> train_photos;
+    uint64_t largest_image = 0;
+    for (size_t view : data.train_views) {
+        const Camera& camera = data.cameras[view];
+        train_photos.push_back(training_photo(photos, camera));
+        largest_image = std::max<uint64_t>(largest_image, uint64_t(camera.width) * camera.height);
+    }
+    prune::TestViews test;
+    test.photos = true;
+    for (size_t view : data.test_views) {
+        test.cameras.push_back(data.cameras[view]);
+        test.targets.push_back(photos(data.cameras[view]).rgb);
+    }
+
+    // The memory budget caps growth; a start beyond it is refused.
+    const uint64_t budget = options.memory_budget > 0 ? options.memory_budget : context.memory_budget();
+    const size_t room = gaussians_within(budget, recipe.sh_degree, largest_image);
+    if (data.initial.size() > room)
+        throw InputError("--memory-budget", "holds about " + std::to_string(room) + " Gaussians at this resolution, "
+                                            "fewer than the " + std::to_string(data.initial.size()) +
+                                            " training starts from; raise it or lower --resolution-scale");
+    train::DensifyRules rules = recipe.densify;
+    rules.max_gaussians = rules.max_gaussians > 0 ? std::min(rules.max_gaussians, room) : room;
+
+    std::vector<Camera> train_cameras;
+    for (size_t view : data.train_views) train_cameras.push_back(data.cameras[view]);
+    const train::SceneExtent extent = train::scene_extent(train_cameras);
+    for (size_t i : extent.distrusted) result.distrusted_cameras.push_back(data.train_views[i]);
+    result.scene_extent = extent.radius;
+    train::TrainOptions train_options;
+    train_options.scene_extent = extent.radius;
+    train_options.background = options.background;
+    train_options.position_schedule = train::PositionSchedule::decay;
+    train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
+    std::unique_ptr<train::Trainer> trainer =
+        options.resume ? std::make_unique<train::Trainer>(context, checkpoint, train_options)
+                       : std::make_unique<train::Trainer>(context, data.initial, train_options);
+
+    const auto start = Clock::now();
+    auto last_report = start;
+    double loss_sum = 0, mse_sum = 0;
+    uint64_t since_report = 0;
+    const uint64_t first = trainer->iteration();
+    std::vector<double> step_times;
+    while (trainer->iteration() < recipe.iterations) {
+        if (options.stop && options.stop->load()) {
+            result.interrupted = true;
+            break;
+        }
+        // The reference counts iterations from 1 and raises the SH degree before the step.
+        const uint64_t iteration = trainer->iteration() + 1;
+        trainer->set_sh_degree(int(std::min<uint64_t>(uint64_t(recipe.sh_degree), iteration / recipe.sh_degree_interval)));
+        const size_t view = training_view(iteration - 1, options.seed, data.train_views);
+        const size_t index = size_t(std::find(data.train_views.begin(), data.train_views.end(), view) -
+                                    data.train_views.begin());
+        const train::StepResult step = trainer->step(data.cameras[view], train_photos[index]);
+        step_times.push_back(step.gpu_milliseconds);
+        result.peak_device_bytes = std::max(result.peak_device_bytes, trainer->device_bytes());
+        loss_sum += step.loss;
+        mse_sum += std::pow(10.0, -step.psnr / 10.0);
+        ++since_report;
+
+        if (iteration < recipe.densify_until) {
+            const auto densify_start = Clock::now();
+            if (iteration > recipe.densify_from && iteration % recipe.densify_interval == 0) {
+                train::DensifyRules now = rules;
+                now.prune_large = iteration > recipe.opacity_reset_interval;
+                now.max_screen_radius = recipe.max_screen_radius;
+                trainer->densify(now);
+            }
+            const bool white = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
+            if (iteration % recipe.opacity_reset_interval == 0 || (white && iteration == recipe.densify_from))
+                trainer->reset_opacity(recipe.opacity_reset_value);
+            result.densify_seconds += std::chrono::duration<double>(Clock::now() - densify_start).count();
+        }
+        if (iteration % options.checkpoint_every == 0) trainer->save_checkpoint(checkpoint);
+        const auto now = Clock::now();
+        const bool last = iteration == recipe.iterations;
+        if (progress && (last || std::chrono::duration<double>(now - last_report).count() >= kReportSeconds)) {
+            TrainStatus status;
+            status.iteration = iteration;
+            status.iterations = recipe.iterations;
+            status.gaussians = trainer->size();
+            status.loss = loss_sum / double(since_report);
+            status.psnr = -10.0 * std::log10(mse_sum / double(since_report));
+            status.seconds = std::chrono::duration<double>(now - start).count();
+            status.seconds_left = status.seconds / double(iteration - first) * double(recipe.iterations - iteration);
+            progress(status);
+            last_report = now;
+            loss_sum = mse_sum = 0;
+            since_report = 0;
+        }
+    }
+    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    result.iterations = trainer->iteration();
+    result.skipped = trainer->skipped_steps();
+    result.gaussians = trainer->size();
+    if (!step_times.empty()) {
+        std::nth_element(step_times.begin(), step_times.begin() + long(step_times.size() / 2), step_times.end());
+        result.gpu_ms_per_iteration = step_times[step_times.size() / 2];
+    }
+    if (result.interrupted) {
+        trainer->save_checkpoint(checkpoint);
+        return result;
+    }
+    trainer->save_checkpoint(checkpoint);
+    const GaussianCloud trained = trainer->cloud();
+    trainer.reset();  // its device memory goes before the test renders
+    if (!test.cameras.empty() && measure) result.test = measure(trained, test);
+
+    const auto mode = io::WriteMode::overwrite;  // refused above unless asked for or resuming
+    io::write_scene(trained, result.ply, mode, "ply");
+    nlohmann::json cameras = nlohmann::json::array();
+    for (size_t view : data.train_views) cameras.push_back(camera_json(data.cameras[view], view, "train"));
+    for (size_t view : data.test_views) cameras.push_back(camera_json(data.cameras[view], view, "test"));
+    write_json(result.cameras_json, cameras, mode);
+    nlohmann::json metrics{{"data_format", data.format},
+                           {"iterations", result.iterations},
+                           {"skipped_steps", result.skipped},
+                           {"gaussians", result.gaussians},
+                           {"seconds", result.seconds},
+                           {"densify_seconds", result.densify_seconds},
+                           {"gpu_ms_per_iteration", result.gpu_ms_per_iteration},
+                           {"peak_device_bytes", result.peak_device_bytes},
+                           {"scene_extent", result.scene_extent},
+                           {"train_views", data.train_views.size()},
+                           {"test_views", data.test_views.size()},
+                           {"test_psnr", result.test.mean_psnr},
+                           {"test_ssim", result.test.mean_ssim},
+                           {"test_psnr_per_view", result.test.psnr}};
+    write_json(result.metrics_json, metrics, mode);
+    return result;
+}
+
+}  // namespace vksplat::jobs

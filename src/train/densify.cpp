@@ -1,0 +1,192 @@
+#include "train/densify.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "gpu/compute_pipeline.hpp"
+#include "gpu/transfer.hpp"
+#include "render/passes.hpp"
+#include "train/parameter_layout.hpp"
+#include "shaders/densify_gather.spv.h"
+#include "shaders/reset_opacity.spv.h"
+
+namespace vksplat::train {
+namespace {
+
+// The reference's split: two new Gaussians sampled from the old one, scales divided by 0.8 * 2.
+constexpr int kSplitCount = 2;
+constexpr float kSplitShrink = 0.8f * kSplitCount;
+
+struct GatherPush {
+    VkDeviceAddress old_params, old_first, old_second, new_params, new_first, new_second, sources, split_values;
+    uint32_t old_count, new_count, fresh_from, split_from, sh_floats;
+};
+
+struct ResetOpacityPush {
+    VkDeviceAddress params, first_moment, second_moment;
+    uint32_t count;
+    float max_logit;
+};
+
+// Reads Gaussian i of the geometry block.
+struct Geometry {
+    const DensifyInputs& in;
+    ParameterLayout layout{in.count, 1};
+
+    glm::vec3 scale(size_t i) const {
+        const float* s = &in.geometry[layout.log_scales() + 3 * i];
+        return {std::exp(s[0]), std::exp(s[1]), std::exp(s[2])};
+    }
+    float max_scale(size_t i) const {
+        const glm::vec3 s = scale(i);
+        return std::max({s.x, s.y, s.z});
+    }
+    float opacity(size_t i) const { return 1.0f / (1.0f + std::exp(-in.geometry[layout.opacities() + i])); }
+    glm::vec3 position(size_t i) const {
+        const float* p = &in.geometry[layout.positions() + 3 * i];
+        return {p[0], p[1], p[2]};
+    }
+    glm::mat3 rotation(size_t i) const {
+        const float* q = &in.geometry[layout.rotations() + 4 * i];
+        return glm::mat3_cast(glm::normalize(glm::quat(q[0], q[1], q[2], q[3])));
+    }
+};
+
+}  // namespace
+
+DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules, double scene_extent, uint64_t seed) {
+    const size_t n = inputs.count;
+    if (inputs.geometry.size() != 11 * n || inputs.sums.size() != kDensifyStride * n)
+        throw std::invalid_argument("plan_densify: inputs of the wrong size");
+    const Geometry g{inputs};
+    const auto sum = [&](size_t i, uint32_t k) { return inputs.sums[i * kDensifyStride + k]; };
+    DensifyPlan plan;
+    plan.report.before = n;
+
+    // Candidates by their mean NDC gradient over the views that drew them.
+    std::vector<float> grad(n, 0.0f);
+    std::vector<uint32_t> candidates;
+    for (size_t i = 0; i < n; ++i) {
+        const float views = sum(i, 1);
+        grad[i] = views > 0 ? sum(i, 0) / views : 0.0f;
+        if (grad[i] >= rules.grad_threshold) candidates.push_back(uint32_t(i));
+    }
+    // Under a cap, growth keeps the largest gradients: a clone adds one Gaussian, a split one more
+    // than it removes.
+    if (rules.max_gaussians > 0) {
+        const size_t room = rules.max_gaussians > n ? rules.max_gaussians - n : 0;
+        if (candidates.size() > room) {
+            std::partial_sort(candidates.begin(), candidates.begin() + long(room), candidates.end(),
+                              [&](uint32_t a, uint32_t b) { return grad[a] > grad[b] || (grad[a] == grad[b] && a < b); });
+            candidates.resize(room);
+            std::sort(candidates.begin(), candidates.end());
+        }
+    }
+    const float small = float(rules.percent_dense * scene_extent);
+    std::vector<uint8_t> split(n, 0), clone(n, 0);
+    for (uint32_t i : candidates) (g.max_scale(i) <= small ? clone : split)[i] = 1;
+
+    // Pruned after growing, as the reference prunes (so new Gaussians too): too transparent, or,
+    // once asked, larger than max_world_scale x extent or (with max_screen_radius) too large on
+    // screen; new Gaussians have no radius yet.
+    const auto pruned = [&](size_t i, float largest_scale, bool is_new) {
+        if (g.opacity(i) < rules.min_opacity) return true;
+        if (!rules.prune_large) return false;
+        if (largest_scale > float(rules.max_world_scale * scene_extent)) return true;
+        return !is_new && rules.max_screen_radius > 0 && sum(i, 2) > rules.max_screen_radius;
+    };
+    for (size_t i = 0; i < n; ++i)
+        if (!split[i] && !pruned(i, g.max_scale(i), false)) plan.sources.push_back(uint32_t(i));
+    plan.fresh_from = uint32_t(plan.sources.size());
+    const size_t survivors = plan.sources.size();
+    size_t new_pruned = 0;
+    for (size_t i = 0; i < n; ++i) {
+        if (!clone[i]) continue;
+        if (pruned(i, g.max_scale(i), true)) {
+            ++new_pruned;
+            continue;
+        }
+        plan.sources.push_back(uint32_t(i));
+        ++plan.report.cloned;
+    }
+    plan.split_from = uint32_t(plan.sources.size());
+    std::mt19937_64 rng(seed);
+    std::normal_distribution<float> normal(0.0f, 1.0f);
+    for (size_t i = 0; i < n; ++i) {
+        if (!split[i]) continue;
+        ++plan.report.split;
+        const glm::vec3 scale = g.scale(i);
+        const float shrunk = g.max_scale(i) / kSplitShrink;
+        const glm::mat3 rotation = g.rotation(i);
+        for (int s = 0; s < kSplitCount; ++s) {
+            // Sampled before the prune test, so that a pruned sample does not change the others.
+            const glm::vec3 offset = rotation * (scale * glm::vec3(normal(rng), normal(rng), normal(rng)));
+            if (pruned(i, shrunk, true)) {
+                ++new_pruned;
+                continue;
+            }
+            plan.sources.push_back(uint32_t(i));
+            const glm::vec3 position = g.position(i) + offset;
+            for (int k = 0; k < 3; ++k) plan.split_values.push_back(position[k]);
+            for (int k = 0; k < 3; ++k) plan.split_values.push_back(std::log(scale[k] / kSplitShrink));
+        }
+    }
+    plan.report.pruned = n - plan.report.split - survivors + new_pruned;
+    plan.report.after = plan.sources.size();
+    return plan;
+}
+
+struct DensifyPasses::Impl {
+    const gpu::Context& context;
+    gpu::ComputePipeline gather, reset;
+
+    explicit Impl(const gpu::Context& c)
+        : context(c),
+          gather(c, gpu::spirv_words(densify_gather_spv), sizeof(GatherPush), {}, "densify_gather"),
+          reset(c, gpu::spirv_words(reset_opacity_spv), sizeof(ResetOpacityPush), {}, "reset_opacity") {}
+};
+
+DensifyPasses::DensifyPasses(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
+DensifyPasses::~DensifyPasses() = default;
+
+DensifyInputs DensifyPasses::download_inputs(const TrainableScene& scene) const {
+    const uint32_t n = scene.layout.count;
+    return {n, gpu::read_buffer<float>(impl_->context, scene.params, size_t(n) * 11),
+            gpu::read_buffer<float>(impl_->context, scene.densify, size_t(n) * kDensifyStride)};
+}
+
+TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPlan& plan) const {
+    const auto& context = impl_->context;
+    const uint32_t m = uint32_t(plan.sources.size());
+    TrainableScene next = TrainableScene::allocate(context, m, scene.sh_degree);
+    if (m == 0) return next;
+    const gpu::Buffer sources = gpu::upload_buffer(context, plan.sources, "densify sources");
+    // A buffer is never empty, so a plan without splits still has one to point at.
+    std::vector<float> split_values = plan.split_values;
+    if (split_values.empty()) split_values.push_back(0.0f);
+    const gpu::Buffer splits = gpu::upload_buffer(context, split_values, "split samples");
+    const GatherPush push{scene.params.address(), scene.first_moment.address(), scene.second_moment.address(),
+                          next.params.address(),  next.first_moment.address(),  next.second_moment.address(),
+                          sources.address(),      splits.address(),             scene.layout.count,
+                          m,                      plan.fresh_from,              plan.split_from,
+                          scene.layout.sh_coefficients * 3};
+    gpu::CommandStream stream(context, 0);
+    stream.begin();
+    stream.dispatch(impl_->gather, push, render::groups_for(m));
+    stream.submit_and_wait();
+    return next;
+}
+
+void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) const {
+    const ResetOpacityPush push{scene.params.address(), scene.first_moment.address(), scene.second_moment.address(),
+                                scene.layout.count, float(std::log(max_opacity / (1.0 - max_opacity)))};
+    gpu::CommandStream stream(impl_->context, 0);
+    stream.begin();
+    stream.dispatch(impl_->reset, push, render::groups_for(scene.layout.count));
+    stream.submit_and_wait();
+}
+
+}  // namespace vksplat::train

@@ -1,0 +1,61 @@
+#pragma once
+// Adaptive density control of the reference trainer (gaussian_model.py: densify_and_clone,
+// densify_and_split, prune, reset_opacity). Gaussians whose projected mean moved the loss most
+// (mean NDC gradient norm over the views that drew them, since the last densification) are cloned
+// where small and split in two where large; the transparent, and (when asked) the oversized, are
+// removed. The host decides from a small download (plan_densify); DensifyPasses moves the
+// parameters and Adam's moments on the device by the plan (new Gaussians start with zero
+// moments, as the reference's optimizer state does) and resets opacities there.
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "gpu/command_stream.hpp"
+#include "train/trainable_scene.hpp"
+#include "vksplat/train/trainer.hpp"
+
+namespace vksplat::train {
+
+// What plan_densify reads of N Gaussians: the first 11 N floats of the parameter layout
+// (positions, log-scales, quaternions, opacity logits) and kDensifyStride sums per Gaussian
+// (preprocess_backward's gradient-norm sum, views, largest radius).
+struct DensifyInputs {
+    uint32_t count = 0;
+    std::vector<float> geometry;
+    std::vector<float> sums;
+};
+
+// The new scene: Gaussian j copies old Gaussian sources[j]. Survivors come first in their order,
+// then clones, then split samples (as the reference concatenates); from fresh_from on the moments
+// are zero; split sample j >= split_from takes position and log-scale from
+// split_values[6 (j - split_from) ...].
+struct DensifyPlan {
+    std::vector<uint32_t> sources;
+    uint32_t fresh_from = 0, split_from = 0;
+    std::vector<float> split_values;
+    DensifyReport report;
+};
+
+DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules, double scene_extent, uint64_t seed);
+
+class DensifyPasses {
+public:
+    explicit DensifyPasses(const gpu::Context& context);
+    ~DensifyPasses();
+    DensifyPasses(const DensifyPasses&) = delete;
+    DensifyPasses& operator=(const DensifyPasses&) = delete;
+
+    // What plan_densify needs of `scene`, read back.
+    DensifyInputs download_inputs(const TrainableScene& scene) const;
+    // A new scene laid out by the plan from `scene`'s parameters and moments; its gradients and
+    // densification sums start at zero. Waits for the device.
+    TrainableScene apply(const TrainableScene& scene, const DensifyPlan& plan) const;
+    // opacity = min(opacity, max_opacity) for every Gaussian, those moments zeroed. Waits.
+    void reset_opacity(TrainableScene& scene, double max_opacity) const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace vksplat::train

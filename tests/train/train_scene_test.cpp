@@ -1,0 +1,213 @@
+// Training from photos end to end: a generated scene rendered to photos and written as a COLMAP
+// folder (text model, points3D.txt near the true centres), trained for a few hundred iterations
+// with densification, must reproduce the held-out views; and the loaders on the real folders.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include <glm/gtc/quaternion.hpp>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
+#include "support/test_data.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/eval/metrics.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/io/sfm_points.hpp"
+#include "vksplat/jobs/train_scene.hpp"
+#include "vksplat/reference/sh.hpp"
+#include "vksplat/render/renderer.hpp"
+
+namespace vksplat::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::vector<Camera> ring_of_views(int count, int width, int height) {
+    std::vector<Camera> cameras;
+    for (int i = 0; i < count; ++i) {
+        const double angle = 2.0 * M_PI * i / count;
+        Camera camera = Camera::look_at({4.0 * std::sin(angle), 0.8 * std::cos(2.0 * angle), -4.0 * std::cos(angle)},
+                                        {0.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, width, height, 55.0, 55.0);
+        char name[32];
+        std::snprintf(name, sizeof(name), "view_%02d.png", i);
+        camera.name = name;
+        cameras.push_back(camera);
+    }
+    return cameras;
+}
+
+// The scene's photos and a COLMAP text model of its cameras, with SfM points at the true centres
+// moved by `noise` and coloured by each Gaussian's base colour.
+void write_colmap_folder(const fs::path& dir, const GaussianCloud& truth, const std::vector<Camera>& cameras,
+                         Renderer& renderer, float noise) {
+    fs::create_directories(dir / "sparse" / "0");
+    fs::create_directories(dir / "images");
+    renderer.set_scene(truth);
+    std::ofstream camera_file(dir / "sparse" / "0" / "cameras.txt"), image_file(dir / "sparse" / "0" / "images.txt");
+    camera_file.precision(12);
+    image_file.precision(12);
+    const Camera& first = cameras.front();
+    camera_file << "1 PINHOLE " << first.width << ' ' << first.height << ' ' << first.fx << ' ' << first.fy << ' '
+                << first.cx << ' ' << first.cy << '\n';
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        const RenderOutput photo = renderer.render(cameras[i]);
+        io::write_png_rgb(dir / "images" / cameras[i].name, photo.width, photo.height, photo.rgb.data(), 8);
+        const glm::dquat q = glm::quat_cast(cameras[i].rotation);
+        const glm::dvec3 t = cameras[i].translation;
+        image_file << i + 1 << ' ' << q.w << ' ' << q.x << ' ' << q.y << ' ' << q.z << ' ' << t.x << ' ' << t.y << ' '
+                   << t.z << " 1 " << cameras[i].name << "\n\n";
+    }
+    std::ofstream points(dir / "sparse" / "0" / "points3D.txt");
+    points.precision(9);
+    std::mt19937 rng(1);
+    std::normal_distribution<float> jitter(0.0f, noise);
+    const int stride = truth.sh_coefficients() * 3;
+    for (size_t i = 0; i < truth.size(); ++i) {
+        points << i + 1;
+        for (int k = 0; k < 3; ++k) points << ' ' << truth.positions[3 * i + k] + jitter(rng);
+        for (int k = 0; k < 3; ++k) {
+            const double c = 0.5 + reference::kShC0 * truth.sh[i * stride + k];
+            points << ' ' << int(std::lround(std::clamp(c, 0.0, 1.0) * 255.0));
+        }
+        points << " 0.5\n";
+    }
+}
+
+// A generated scene of 150 Gaussians (SH degree 1) photographed by a ring of 40 cameras at 80x60,
+// written as a COLMAP folder; every 8th view is held out.
+class TrainScene : public GpuTest {
+protected:
+    void make_data(const std::string& name) {
+        dir = fresh_test_dir(name);
+        truth = random_scene(3, 150, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.5f);
+        for (size_t i = 0; i < truth.size(); ++i) {
+            truth.positions[3 * i + 2] -= 5.0f;
+            truth.opacity_logits[i] = std::clamp(truth.opacity_logits[i], 0.0f, 3.0f);
+        }
+        cameras = ring_of_views(40, 80, 60);
+        renderer = std::make_unique<Renderer>(context());
+        write_colmap_folder(dir / "data", truth, cameras, *renderer, 0.05f);
+    }
+    // The reference recipe shrunk to `iterations` steps at this size: SH degree 1 from step 200,
+    // densification every 100 steps from 100 until `densify_until` (0: never), no opacity reset
+    // (recovering from one takes thousands of steps).
+    static jobs::TrainRecipe recipe(uint64_t iterations, uint64_t densify_until) {
+        jobs::TrainRecipe r;
+        r.iterations = iterations;
+        r.sh_degree = 1;
+        r.sh_degree_interval = 200;
+        r.densify_from = 100;
+        r.densify_until = densify_until;
+        r.densify_interval = 100;
+        r.opacity_reset_interval = 100000;
+        return r;
+    }
+    jobs::TrainResult train(const jobs::TrainingData& data, const jobs::TrainRecipe& r, const std::string& out) {
+        jobs::TrainOptions options;
+        options.recipe = r;
+        options.out_dir = dir / out;
+        const jobs::TrainResult result =
+            jobs::train_scene(context(), data, jobs::photos_in_folder(data.images_dir, {0, 0, 0}), options, measure());
+        std::printf("  %zu -> %zu Gaussians, held-out PSNR %.2f dB, %.1f s\n", data.initial.size(), result.gaussians,
+                    result.test.mean_psnr, result.seconds);
+        return result;
+    }
+    jobs::TestMeasure measure() {
+        return [this](const GaussianCloud& scene, const prune::TestViews& views) {
+            return prune::measure_quality(*renderer, scene, views, RenderSettings{}, false);
+        };
+    }
+    fs::path dir;
+    GaussianCloud truth;
+    std::vector<Camera> cameras;
+    std::unique_ptr<Renderer> renderer;
+};
+
+TEST_F(TrainScene, AColmapFolderTrainsToItsHeldOutViews) {
+    make_data("train_scene_colmap");
+    const jobs::TrainRecipe r = recipe(500, 0);
+    jobs::TrainingData data = jobs::load_training_data(dir / "data", r, 1.0, 0);
+    EXPECT_EQ(data.format, "colmap");
+    EXPECT_EQ(data.test_views.size(), 5u);
+    EXPECT_EQ(data.train_views.size(), 35u);
+    EXPECT_EQ(data.initial.size(), truth.size());
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        for (int row = 0; row < 3; ++row)
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(data.cameras[i].rotation[c][row], cameras[i].rotation[c][row], 1e-6) << i;
+        ASSERT_NEAR(glm::length(data.cameras[i].centre() - cameras[i].centre()), 0.0, 1e-4) << i;
+    }
+
+    // From the true Gaussians, perturbed, a few hundred steps of the loop (view order, SH schedule,
+    // position decay) must recover views they were not fitted to. Densification is off here: it
+    // splits what is already right, which costs ~9 dB that 400 steps do not win back (measured);
+    // the next test shows it where it belongs.
+    data.initial = truth;
+    std::mt19937 rng(7);
+    std::normal_distribution<float> noise(0.0f, 1.0f);
+    for (auto& v : data.initial.positions) v += 0.03f * noise(rng);
+    for (auto& v : data.initial.log_scales) v += 0.2f * noise(rng);
+    for (auto& v : data.initial.opacity_logits) v += 0.5f * noise(rng);
+    for (auto& v : data.initial.sh) v += 0.1f * noise(rng);
+    const jobs::TrainResult result = train(data, r, "out");
+    EXPECT_GE(result.test.mean_psnr, 30.0);
+    EXPECT_EQ(result.iterations, 500u);
+    EXPECT_EQ(result.skipped, 0u);
+    for (const auto& file : {result.ply, result.cameras_json, result.metrics_json}) EXPECT_TRUE(fs::exists(file)) << file;
+    // A second run into the same folder is refused before any work.
+    jobs::TrainOptions again;
+    again.recipe = r;
+    again.out_dir = dir / "out";
+    EXPECT_THROW(jobs::train_scene(context(), data, jobs::photos_in_folder(data.images_dir, {0, 0, 0}), again, measure()),
+                 InputError);
+}
+
+TEST_F(TrainScene, DensificationGrowsFromSfmPointsAndBeatsNone) {
+    // From the SfM points (the true centres moved by 0.05, isotropic kNN scales, point colours),
+    // the reference threshold of 0.0002: growth must pay on the held-out views within 800 steps
+    // (measured: 22.7 dB without, 25.1 dB with, 150 -> ~1,500 Gaussians).
+    make_data("train_scene_sfm");
+    const jobs::TrainingData data = jobs::load_training_data(dir / "data", recipe(800, 0), 1.0, 0);
+    const jobs::TrainResult fixed = train(data, recipe(800, 0), "fixed");
+    const jobs::TrainResult grown = train(data, recipe(800, 600), "grown");
+    EXPECT_EQ(fixed.gaussians, truth.size());
+    EXPECT_GT(grown.gaussians, 3 * truth.size());
+    EXPECT_GT(grown.test.mean_psnr, fixed.test.mean_psnr + 1.5);
+}
+
+TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {
+    const fs::path dir = fresh_test_dir("train_scene_refusals");
+    EXPECT_THROW(jobs::load_training_data(dir, {}, 1.0, 0), InputError);
+    fs::create_directories(dir / "sparse" / "0");
+    std::ofstream(dir / "sparse" / "0" / "cameras.txt") << "1 OPENCV 64 48 50 50 32 24 0.1 0.01 0 0\n";
+    std::ofstream(dir / "sparse" / "0" / "images.txt") << "1 1 0 0 0 0 0 4 1 a.png\n\n";
+    std::ofstream(dir / "sparse" / "0" / "points3D.txt") << "1 0 0 0 255 0 0 0.5\n";
+    try {
+        jobs::load_training_data(dir, {}, 1.0, 0);
+        FAIL() << "a distorted camera model was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("OPENCV"), std::string::npos) << e.what();
+    }
+}
+
+TEST(SfmPoints, ReadTheRealFolders) {
+    VKSPLAT_REQUIRE_SHARED_DATA();
+    const auto bonsai = io::read_sfm_points(shared_data_dir() / "bonsai" / "sparse" / "0");
+    EXPECT_EQ(bonsai.size(), 73404u);
+    const auto snowmiku = io::read_sfm_points(shared_data_dir() / "snowmiku" / "sparse" / "0");
+    EXPECT_GT(snowmiku.size(), 1000u);
+    for (float c : snowmiku.colors) ASSERT_TRUE(c >= 0.0f && c <= 1.0f);
+    const jobs::TrainingData data = jobs::load_training_data(shared_data_dir() / "bonsai", {}, 1.0, 0);
+    EXPECT_EQ(data.format, "colmap");
+    EXPECT_EQ(data.cameras.size(), 291u);
+    EXPECT_EQ(data.test_views.size(), 37u);  // every 8th of 291 by name, as the reference splits it
+    EXPECT_EQ(data.initial.size(), 73404u);
+}
+
+}  // namespace
+}  // namespace vksplat::test

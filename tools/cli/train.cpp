@@ -1,0 +1,120 @@
+// vksplat train: trains a scene from photos with the reference 3DGS recipe on the GPU.
+#include <cstdio>
+#include <memory>
+#include <unistd.h>
+
+#include "commands.hpp"
+#include "interrupt.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/jobs/train_scene.hpp"
+
+namespace vksplat::cli {
+namespace {
+
+struct TrainArgs {
+    GpuOptions gpu;
+    std::string data, out;
+    uint64_t iterations = 30000, test_every = 8, checkpoint_every = 5000, seed = 0;
+    uint64_t densify_until = jobs::TrainRecipe{}.densify_until;
+    double grad_threshold = train::DensifyRules{}.grad_threshold;
+    size_t max_gaussians = 0;
+    double resolution_scale = 1.0;
+    bool white_background = false, resume = false, force = false, quiet = false;
+};
+
+int run_train(const TrainArgs& args) {
+    jobs::TrainOptions options;
+    options.recipe.iterations = args.iterations;
+    options.recipe.test_every = args.test_every;
+    options.recipe.densify.max_gaussians = args.max_gaussians;
+    options.recipe.densify_until = args.densify_until;
+    options.recipe.densify.grad_threshold = args.grad_threshold;
+    options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
+    options.resolution_scale = args.resolution_scale;
+    options.seed = args.seed;
+    options.memory_budget = static_cast<uint64_t>(args.gpu.memory_budget_mb * 1048576.0);
+    options.out_dir = args.out;
+    options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    options.checkpoint_every = args.checkpoint_every;
+    options.resume = args.resume;
+    options.stop = &stop_on_interrupt();
+
+    const jobs::TrainingData data =
+        jobs::load_training_data(args.data, options.recipe, args.resolution_scale, args.seed);
+    for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    gpu::Context context(args.gpu.context_options());
+    Renderer renderer(context);
+    RenderSettings settings;
+    settings.background = options.background;
+    const auto measure = [&](const GaussianCloud& scene, const prune::TestViews& views) {
+        return prune::measure_quality(renderer, scene, views, settings, true);
+    };
+    std::fprintf(stderr, "training from %s (%s: %zu training, %zu test views, %zu starting Gaussians) on %s\n",
+                 args.data.c_str(), data.format.c_str(), data.train_views.size(), data.test_views.size(),
+                 data.initial.size(), context.info().name.c_str());
+    const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
+    const auto result = jobs::train_scene(
+        context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale != 1.0), options,
+        measure, [&](const jobs::TrainStatus& s) {
+            if (args.quiet && s.iteration != s.iterations) return;
+            std::fprintf(stderr, "%siteration %llu/%llu  %zu Gaussians  loss %.4f  train PSNR %.2f dB  %.0f s, %.0f s left%s",
+                         terminal ? "\r" : "", static_cast<unsigned long long>(s.iteration),
+                         static_cast<unsigned long long>(s.iterations), s.gaussians, s.loss, s.psnr, s.seconds,
+                         s.seconds_left, terminal && s.iteration != s.iterations ? "   " : "\n");
+            std::fflush(stderr);
+        });
+    for (size_t v : result.distrusted_cameras)
+        std::fprintf(stderr, "warning: camera '%s' lies far from the others; left out of the scene extent\n",
+                     data.cameras[v].name.c_str());
+    if (result.interrupted) {
+        std::fprintf(stderr, "\ninterrupted at iteration %llu: state saved in %s/checkpoint (--resume continues)\n",
+                     static_cast<unsigned long long>(result.iterations), args.out.c_str());
+        return 130;
+    }
+    std::printf("trained %llu iterations (%llu skipped) in %.1f s, GPU %.3f ms per iteration; %zu Gaussians; "
+                "peak device memory %.1f MB\n",
+                static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
+                result.seconds, result.gpu_ms_per_iteration, result.gaussians, double(result.peak_device_bytes) / 1e6);
+    std::printf("test views (%zu): PSNR %.3f dB, SSIM %.4f\nwrote %s, %s, %s\n", result.test.psnr.size(),
+                result.test.mean_psnr, result.test.mean_ssim, result.ply.string().c_str(),
+                result.cameras_json.string().c_str(), result.metrics_json.string().c_str());
+    return 0;
+}
+
+}  // namespace
+
+void register_train(CLI::App& app, Action& action) {
+    auto* command = app.add_subcommand("train", "train a scene from photos (the reference 3DGS recipe, on the GPU)");
+    command->footer(
+        "DATA: a COLMAP folder (sparse/0 with points3D.bin/.txt/.ply, images/), a NeRF-synthetic folder\n"
+        "(transforms_train.json, transforms_test.json) or an INRIA cameras.json beside images/.\n"
+        "Writes OUT_DIR/point_cloud.ply, cameras.json (with each camera's split), metrics.json, checkpoint.\n"
+        "Example:\n  vksplat train bonsai --max-gaussians 400000 -o bonsai_trained");
+    auto args = std::make_shared<TrainArgs>();
+    command->add_option("data", args->data, "the data folder")->required()->check(CLI::ExistingDirectory);
+    command->add_option("-o,--out", args->out, "output folder")->required();
+    command->add_option("--iters", args->iterations, "iterations (default 30000)")->check(CLI::PositiveNumber);
+    command->add_option("--max-gaussians", args->max_gaussians,
+                        "cap densification here, keeping the largest-gradient candidates");
+    command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
+        ->check(CLI::Range(0.01, 1.0));
+    command->add_option("--densify-until", args->densify_until,
+                        "last iteration that clones, splits and prunes (0: never densify)")
+        ->capture_default_str();
+    command->add_option("--densify-grad-threshold", args->grad_threshold,
+                        "mean NDC gradient of a Gaussian's projected mean above which it is cloned or split")
+        ->capture_default_str()
+        ->check(CLI::PositiveNumber);
+    command->add_flag("--white-background", args->white_background, "white instead of black behind the scene");
+    command->add_option("--test-every", args->test_every, "COLMAP: every N-th photo by name is a test view (default 8)");
+    command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
+        ->check(CLI::PositiveNumber);
+    command->add_option("--seed", args->seed, "seed of the view order and random starts");
+    command->add_flag("--resume", args->resume, "continue from OUT_DIR/checkpoint");
+    command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
+    command->add_flag("--force", args->force, "overwrite existing outputs");
+    add_gpu_options(*command, args->gpu);
+    command->callback([&action, args] { action = [args] { return run_train(*args); }; });
+}
+
+}  // namespace vksplat::cli
