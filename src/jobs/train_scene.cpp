@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <limits>
 
 #include <nlohmann/json.hpp>
@@ -76,6 +77,19 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
     return points;
 }
 
+// An INRIA cameras.json whose every entry names its "split" (as bonsai's and vksplat train's own
+// do) says which views are held out; without one on every entry, false and the default split.
+bool held_out_by_split(const fs::path& path, size_t count, TrainingData& data) {
+    std::ifstream in(path);
+    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
+    if (!json.is_array() || json.size() != count) return false;
+    for (const auto& entry : json)
+        if (!entry.is_object() || !entry.contains("split") || !entry["split"].is_string()) return false;
+    for (size_t i = 0; i < count; ++i) (json[i]["split"] == "test" ? data.test_views : data.train_views).push_back(i);
+    if (data.train_views.empty()) throw InputError(path.string(), "every camera is a test view (\"split\")");
+    return true;
+}
+
 nlohmann::json camera_json(const Camera& camera, size_t id, const char* split) {
     const glm::dmat3 to_world = glm::transpose(camera.rotation);
     const glm::dvec3 centre = camera.centre();
@@ -131,9 +145,11 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     } else if (fs::exists(data_dir / "cameras.json")) {
         data.format = "inria";
         data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
-        const auto test = default_test_views(data.cameras.size());
-        data.test_views = test;
-        data.train_views = default_train_views(data.cameras.size(), test);
+        if (!held_out_by_split(data_dir / "cameras.json", data.cameras.size(), data)) {
+            const auto test = default_test_views(data.cameras.size());
+            data.test_views = test;
+            data.train_views = default_train_views(data.cameras.size(), test);
+        }
         points = points_around_cameras(data.cameras, recipe.random_points, seed);
         data.images_dir = data_dir / "images";
     } else {

@@ -195,6 +195,37 @@ TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {
     }
 }
 
+TEST(TrainingData, AnInriaFolderIsSplitByItsSplitFields) {
+    const fs::path dir = fresh_test_dir("train_scene_inria_split");
+    fs::create_directories(dir / "images");
+    const auto write = [&](bool with_split) {
+        std::ofstream out(dir / "cameras.json");
+        out << "[";
+        for (int i = 0; i < 4; ++i) {
+            const double angle = 2.0 * M_PI * i / 4;
+            out << (i ? "," : "") << "{\"id\": " << i << ", \"img_name\": \"v" << i << "\", \"width\": 32, \"height\": 24, "
+                << "\"position\": [" << 4 * std::sin(angle) << ", 0, " << -4 * std::cos(angle) << "], "
+                << "\"rotation\": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], \"fx\": 30, \"fy\": 30";
+            if (with_split) out << ", \"split\": \"" << (i % 2 ? "test" : "train") << "\"";
+            out << "}";
+        }
+        out << "]";
+    };
+    jobs::TrainRecipe recipe;
+    recipe.random_points = 100;
+    write(true);
+    jobs::TrainingData data = jobs::load_training_data(dir, recipe, 1.0, 0);
+    EXPECT_EQ(data.format, "inria");
+    EXPECT_EQ(data.test_views, (std::vector<size_t>{1, 3}));
+    EXPECT_EQ(data.train_views, (std::vector<size_t>{0, 2}));
+    EXPECT_EQ(data.initial.size(), 100u);
+    // Without split fields, fewer than 13 cameras are all test and all training views.
+    write(false);
+    data = jobs::load_training_data(dir, recipe, 1.0, 0);
+    EXPECT_EQ(data.test_views.size(), 4u);
+    EXPECT_EQ(data.train_views.size(), 4u);
+}
+
 TEST(SfmPoints, ReadTheRealFolders) {
     VKSPLAT_REQUIRE_SHARED_DATA();
     const auto bonsai = io::read_sfm_points(shared_data_dir() / "bonsai" / "sparse" / "0");

@@ -6,7 +6,8 @@
 // SIMPLE_PINHOLE cameras, other models refused: undistort first), a NeRF-synthetic folder
 // (transforms_train.json, transforms_test.json; RGBA photos composited on the background;
 // 100,000 random points in [-1.3, 1.3]^3 to start from), or an INRIA cameras.json beside images/
-// (started from random points in the box the cameras look into).
+// (held out by each entry's "split" where every entry has one, else the first 13; started from
+// random points in the box the cameras see around their common focus).
 // The recipe, each constant in TrainRecipe: SH degree raised every 1,000 iterations; densification
 // every 100 iterations from 500 to 15,000 (train::DensifyRules); opacity reset every 3,000 (and at
 // 500 with a white background); the position rate decaying over the whole run.
