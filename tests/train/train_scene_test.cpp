@@ -180,6 +180,33 @@ TEST_F(TrainScene, DensificationGrowsFromSfmPointsAndBeatsNone) {
     EXPECT_GT(grown.test.mean_psnr, fixed.test.mean_psnr + 1.5);
 }
 
+TEST_F(TrainScene, TheMemoryBudgetCapsGrowthAndRefusesAStartThatCannotFit) {
+    make_data("train_scene_budget");
+    const jobs::TrainRecipe r = recipe(300, 250);
+    const jobs::TrainingData data = jobs::load_training_data(dir / "data", r, 1.0, 0);
+    // The smallest budget (in steps of 16 KB) that holds 300 Gaussians at 80x60.
+    uint64_t budget = 1 << 20;
+    while (jobs::gaussians_within(budget, 1, 80 * 60) < 300) budget += 1 << 14;
+    const size_t room = jobs::gaussians_within(budget, 1, 80 * 60);
+    jobs::TrainOptions options;
+    options.recipe = r;
+    options.memory_budget = budget;
+    options.out_dir = dir / "capped";
+    const jobs::TrainResult capped =
+        jobs::train_scene(context(), data, jobs::photos_in_folder(data.images_dir, {0, 0, 0}), options, measure());
+    EXPECT_GT(capped.gaussians, truth.size());  // it grew (to ~1,500 without the budget) ...
+    EXPECT_LE(capped.gaussians, room);          // ... as far as the budget holds
+    options.memory_budget = budget / 4;
+    options.out_dir = dir / "too_small";
+    try {
+        jobs::train_scene(context(), data, jobs::photos_in_folder(data.images_dir, {0, 0, 0}), options, measure());
+        FAIL() << "a start beyond the memory budget was accepted";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("--memory-budget"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(fs::exists(dir / "too_small" / "point_cloud.ply"));
+}
+
 TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {
     const fs::path dir = fresh_test_dir("train_scene_refusals");
     EXPECT_THROW(jobs::load_training_data(dir, {}, 1.0, 0), InputError);
