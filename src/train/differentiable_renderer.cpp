@@ -132,4 +132,21 @@ uint64_t DifferentiableRenderer::device_bytes() const {
            last_.size() + status_.size();
 }
 
+void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Camera& camera,
+                                           const RenderSettings& settings, VkDeviceAddress pixel_grad) {
+    gpu::CommandStream stream(context_);
+    for (;;) {
+        const auto params =
+            render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false, entry_capacity());
+        stream.begin();
+        record_forward(stream, scene, params);
+        record_backward(stream, scene, pixel_grad);
+        record_readback(stream);
+        stream.barrier_before_host_read();
+        stream.submit_and_wait();
+        if ((status() & kStepOverflowed) == 0) return;
+        grow_entries(entries_needed());
+    }
+}
+
 }  // namespace vksplat::train

@@ -38,6 +38,11 @@ public:
     // Copies the frame counters and the step status to the host-visible readback (after the
     // submission: counters(), status()).
     void record_readback(gpu::CommandStream& stream);
+    // Forward and backward of one view to fixed pixel gradients (vec4 per pixel at `pixel_grad`) in
+    // one submission, re-run with grown tile entries until the frame fits; waits. For callers that
+    // want the gradients of a loss of their own (train::render_gradients, the tests).
+    void backpropagate(const TrainableScene& scene, const Camera& camera, const RenderSettings& settings,
+                       VkDeviceAddress pixel_grad);
     uint32_t entries_needed() const;
     uint32_t visible() const;
     uint32_t status() const;

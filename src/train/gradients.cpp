@@ -30,19 +30,7 @@ RenderGradients render_gradients(const gpu::Context& context, const GaussianClou
     for (size_t p = 0; p < pixels; ++p) std::memcpy(&pixel_weights[4 * p], &weights[3 * p], 3 * sizeof(float));
     const gpu::Buffer pixel_grad = gpu::upload_buffer(context, pixel_weights, "pixel weights");
 
-    gpu::CommandStream stream(context);
-    for (;;) {
-        const auto params = render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false,
-                                                       renderer.entry_capacity());
-        stream.begin();
-        renderer.record_forward(stream, scene, params);
-        renderer.record_backward(stream, scene, pixel_grad.address());
-        renderer.record_readback(stream);
-        stream.barrier_before_host_read();
-        stream.submit_and_wait();
-        if ((renderer.status() & kStepOverflowed) == 0) break;
-        renderer.grow_entries(renderer.entries_needed());
-    }
+    renderer.backpropagate(scene, camera, settings, pixel_grad.address());
 
     RenderGradients out;
     out.gradient = scene.download(context, scene.grads);

@@ -130,19 +130,7 @@ TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormula) {
     const gpu::Buffer pixel_grad = gpu::upload_buffer(context(), pixel_weights, "pixel weights");
     RenderSettings settings;
     settings.background = background;
-    gpu::CommandStream stream(context());
-    for (;;) {
-        const auto params = render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false,
-                                                       renderer.entry_capacity());
-        stream.begin();
-        renderer.record_forward(stream, scene, params);
-        renderer.record_backward(stream, scene, pixel_grad.address());
-        renderer.record_readback(stream);
-        stream.barrier_before_host_read();
-        stream.submit_and_wait();
-        if ((renderer.status() & train::kStepOverflowed) == 0) break;
-        renderer.grow_entries(renderer.entries_needed());
-    }
+    renderer.backpropagate(scene, camera, settings, pixel_grad.address());
     const auto gpu = gpu::read_buffer<float>(context(), renderer.splat_grads(), cloud.size() * train::kSplatGradStride);
 
     // The analytic formula on the reference's projection.
