@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
     app.add_option("--max-gaussians", max_gaussians);
     app.add_option("--densify-until", recipe.densify_until);
     app.add_option("--grad-threshold", recipe.densify.grad_threshold);
-    app.add_option("--max-screen-radius", recipe.max_screen_radius, "0: never pruned by screen or world size");
+    app.add_option("--max-screen-radius", recipe.densify.max_screen_radius,
+                   "> 0: after the first opacity reset, also prune radii above it (pixels)");
     app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);

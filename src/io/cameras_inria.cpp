@@ -38,8 +38,17 @@ std::vector<Camera> inria_cameras_from_json(const nlohmann::json& document, cons
 
 }  // namespace detail
 
-std::vector<Camera> read_inria_cameras(const std::filesystem::path& path) {
-    return detail::inria_cameras_from_json(detail::read_json_file(path), path);
+std::vector<Camera> read_inria_cameras(const std::filesystem::path& path, std::vector<std::string>* splits) {
+    const nlohmann::json document = detail::read_json_file(path);
+    std::vector<Camera> cameras = detail::inria_cameras_from_json(document, path);
+    if (splits) {
+        splits->clear();
+        for (const nlohmann::json& entry : document) {
+            const auto split = entry.find("split");
+            splits->push_back(split != entry.end() && split->is_string() ? split->get<std::string>() : "");
+        }
+    }
+    return cameras;
 }
 
 }  // namespace vksplat::io

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <limits>
 
 #include <nlohmann/json.hpp>
@@ -33,17 +32,6 @@ constexpr uint64_t kFixedBytesPerGaussian = 4 * 11 * 4 + 48 + 36 + 12 + 100 + 6 
 // pixel gradient and photo, and the loss's nine planes.
 constexpr uint64_t kBytesPerPixel = 24 + 28 + 36;
 
-Camera scaled(Camera camera, double scale) {
-    if (scale == 1.0) return camera;
-    camera.width = std::max(1, int(std::lround(camera.width * scale)));
-    camera.height = std::max(1, int(std::lround(camera.height * scale)));
-    camera.fx *= scale;
-    camera.fy *= scale;
-    camera.cx *= scale;
-    camera.cy *= scale;
-    return camera;
-}
-
 // COLMAP reads distorted models as pinholes with a warning; training on them would fit the
 // distortion into the scene, so they are refused here.
 void refuse_distortion(const std::vector<std::string>& warnings, const fs::path& where) {
@@ -59,10 +47,7 @@ void refuse_distortion(const std::vector<std::string>& warnings, const fs::path&
 // focus (parallel axes), the box around the cameras' mean as large as their spread.
 io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t count, uint64_t seed) {
     glm::dvec3 centre(0.0);
-    for (const auto& c : cameras) centre += c.centre();
-    centre /= double(cameras.size());
     double half = 0;
-    for (const auto& c : cameras) half = std::max(half, glm::length(c.centre() - centre));
     if (const auto focus = train::common_focus(cameras)) {
         std::vector<double> seen;
         for (const auto& c : cameras)
@@ -70,24 +55,15 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
         std::nth_element(seen.begin(), seen.begin() + long(seen.size() / 2), seen.end());
         centre = *focus;
         half = seen[seen.size() / 2];
+    } else {
+        for (const auto& c : cameras) centre += c.centre();
+        centre /= double(cameras.size());
+        for (const auto& c : cameras) half = std::max(half, glm::length(c.centre() - centre));
     }
     io::SfmPoints points = train::random_points(count, -float(half), float(half), seed);
     for (size_t i = 0; i < points.size(); ++i)
         for (int k = 0; k < 3; ++k) points.positions[3 * i + k] += float(centre[k]);
     return points;
-}
-
-// An INRIA cameras.json whose every entry names its "split" (as bonsai's and vksplat train's own
-// do) says which views are held out; without one on every entry, false and the default split.
-bool held_out_by_split(const fs::path& path, size_t count, TrainingData& data) {
-    std::ifstream in(path);
-    const nlohmann::json json = nlohmann::json::parse(in, nullptr, false);
-    if (!json.is_array() || json.size() != count) return false;
-    for (const auto& entry : json)
-        if (!entry.is_object() || !entry.contains("split") || !entry["split"].is_string()) return false;
-    for (size_t i = 0; i < count; ++i) (json[i]["split"] == "test" ? data.test_views : data.train_views).push_back(i);
-    if (data.train_views.empty()) throw InputError(path.string(), "every camera is a test view (\"split\")");
-    return true;
 }
 
 nlohmann::json camera_json(const Camera& camera, size_t id, const char* split) {
@@ -144,11 +120,17 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
         data.images_dir = data_dir;
     } else if (fs::exists(data_dir / "cameras.json")) {
         data.format = "inria";
-        data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
-        if (!held_out_by_split(data_dir / "cameras.json", data.cameras.size(), data)) {
-            const auto test = default_test_views(data.cameras.size());
-            data.test_views = test;
-            data.train_views = default_train_views(data.cameras.size(), test);
+        std::vector<std::string> splits;
+        data.cameras = io::read_inria_cameras(data_dir / "cameras.json", &splits);
+        // Held out by each entry's "split" where every entry names one, else the first 13.
+        if (std::none_of(splits.begin(), splits.end(), [](const std::string& s) { return s.empty(); })) {
+            for (size_t i = 0; i < splits.size(); ++i)
+                (splits[i] == "test" ? data.test_views : data.train_views).push_back(i);
+            if (data.train_views.empty())
+                throw InputError((data_dir / "cameras.json").string(), "every camera is a test view (\"split\")");
+        } else {
+            data.test_views = default_test_views(data.cameras.size());
+            data.train_views = default_train_views(data.cameras.size(), data.test_views);
         }
         points = points_around_cameras(data.cameras, recipe.random_points, seed);
         data.images_dir = data_dir / "images";
@@ -158,7 +140,10 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     }
     if (!fs::is_directory(data.images_dir)) throw InputError(data.images_dir.string(), "no such folder of photos");
     if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
-    for (auto& camera : data.cameras) camera = scaled(camera, resolution_scale);
+    if (resolution_scale != 1.0)
+        for (auto& camera : data.cameras)
+            camera = camera.resized(std::max(1, int(std::lround(camera.width * resolution_scale))),
+                                    std::max(1, int(std::lround(camera.height * resolution_scale))));
     data.initial = train::initial_cloud(points, recipe.sh_degree);
     return data;
 }
@@ -246,7 +231,6 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
             if (iteration > recipe.densify_from && iteration % recipe.densify_interval == 0) {
                 train::DensifyRules now = rules;
                 now.prune_large = iteration > recipe.opacity_reset_interval;
-                now.max_screen_radius = recipe.max_screen_radius;
                 trainer->densify(now);
             }
             const bool white = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
@@ -280,11 +264,8 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         std::nth_element(step_times.begin(), step_times.begin() + long(step_times.size() / 2), step_times.end());
         result.gpu_ms_per_iteration = step_times[step_times.size() / 2];
     }
-    if (result.interrupted) {
-        trainer->save_checkpoint(checkpoint);
-        return result;
-    }
     trainer->save_checkpoint(checkpoint);
+    if (result.interrupted) return result;
     const GaussianCloud trained = trainer->cloud();
     trainer.reset();  // its device memory goes before the test renders
     if (!test.cameras.empty() && measure) result.test = measure(trained, test);

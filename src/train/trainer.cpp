@@ -202,7 +202,6 @@ uint64_t Trainer::iteration() const { return impl_->iteration; }
 uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
 double Trainer::position_learning_rate() const { return impl_->position_rate(); }
 void Trainer::set_sh_degree(int degree) { impl_->sh_degree = std::clamp(degree, 0, 3); }
-int Trainer::sh_degree() const { return std::min(impl_->sh_degree, impl_->scene.sh_degree); }
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;

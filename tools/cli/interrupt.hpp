@@ -5,7 +5,7 @@
 
 namespace vksplat::cli {
 
-// Installs the handlers (once) and returns the flag they raise. A signal handler can only reach a
+// Installs the handlers (again on each call, which is harmless) and returns the flag they raise. A signal handler can only reach a
 // flag with static storage, so this is the one such flag of the program.
 const std::atomic<bool>& stop_on_interrupt();
 

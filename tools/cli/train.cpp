@@ -30,7 +30,6 @@ int run_train(const TrainArgs& args) {
     options.recipe.densify_until = args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
     options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
-    options.resolution_scale = args.resolution_scale;
     options.seed = args.seed;
     options.memory_budget = static_cast<uint64_t>(args.gpu.memory_budget_mb * 1048576.0);
     options.out_dir = args.out;

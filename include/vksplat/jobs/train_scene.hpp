@@ -35,8 +35,9 @@ struct TrainRecipe {
     uint64_t densify_from = 500, densify_until = 15000, densify_interval = 100;
     uint64_t opacity_reset_interval = 3000;
     double opacity_reset_value = 0.01;
-    double max_screen_radius = 0;       // > 0: pruned above this many pixels after the first reset (DensifyRules)
-    train::DensifyRules densify;        // threshold 0.0002, percent dense 0.01, min opacity 0.005
+    // Threshold 0.0002, percent dense 0.01, min opacity 0.005, no screen-size prune; prune_large is
+    // set by the loop after the first opacity reset.
+    train::DensifyRules densify;
     uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
     size_t random_points = 100000;      // NeRF-synthetic and INRIA starts
     float random_box = 1.3f;            // NeRF-synthetic start: uniform in [-box, box]^3
@@ -59,7 +60,6 @@ TrainingData load_training_data(const std::filesystem::path& data_dir, const Tra
 struct TrainOptions {
     TrainRecipe recipe;
     std::array<float, 3> background{0, 0, 0};
-    double resolution_scale = 1.0;
     uint64_t seed = 0;
     // Device memory training may hold (0: the device's budget). Growth stops where the next
     // densification would pass it; a start that does not fit is refused before any step.

@@ -125,7 +125,6 @@ public:
     double position_learning_rate() const;
     // SH bands evaluated from the next step on (the trainer raises it as training goes).
     void set_sh_degree(int degree);
-    int sh_degree() const;
     // Clones, splits and prunes by the gradients gathered since the last call (see DensifyRules),
     // carrying Adam's moments over (zero for new Gaussians), then starts gathering afresh.
     DensifyReport densify(const DensifyRules& rules);
