@@ -1,4 +1,4 @@
-// Camera statistics training scales by: the robust scene extent and the cameras' common focus.
+// The robust scene extent training scales its rates by.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -29,16 +29,6 @@ TEST(SceneExtent, OneFarCameraIsDistrustedAndLeftOut) {
     EXPECT_EQ(robust.distrusted, (std::vector<size_t>{12}));
     EXPECT_NEAR(robust.radius, radius, 1e-9);
     EXPECT_THROW(train::scene_extent({}), InputError);
-}
-
-TEST(SceneExtent, TheCommonFocusIsWhereTheCamerasLook) {
-    const auto focus = train::common_focus(ring(8, {1, 2, 3}));
-    ASSERT_TRUE(focus);
-    EXPECT_NEAR(glm::length(*focus - glm::dvec3(1, 2, 3)), 0.0, 1e-9);
-    // A forward-facing rig (parallel axes) has none.
-    std::vector<Camera> parallel;
-    for (int i = 0; i < 5; ++i) parallel.push_back(Camera::look_at({double(i), 0, 0}, {double(i), 0, 10}, {0, -1, 0}, 64, 48, 60.0, 50.0));
-    EXPECT_FALSE(train::common_focus(parallel));
 }
 
 }  // namespace

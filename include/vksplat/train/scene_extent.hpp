@@ -4,7 +4,6 @@
 // (getNerfppNorm). One camera placed far off by structure from motion would set that alone, so
 // cameras far from the others are left out first (robust statistics) and reported.
 #include <cstddef>
-#include <optional>
 #include <vector>
 
 #include "vksplat/camera.hpp"
@@ -18,9 +17,5 @@ struct SceneExtent {
 
 // Throws InputError for an empty list.
 SceneExtent scene_extent(const std::vector<Camera>& cameras);
-
-// Where the cameras look together: the point nearest to all optical axes in the least-squares
-// sense, or nothing when the axes are (nearly) parallel, as in a forward-facing capture.
-std::optional<glm::dvec3> common_focus(const std::vector<Camera>& cameras);
 
 }  // namespace vksplat::train
