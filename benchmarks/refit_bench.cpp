@@ -55,7 +55,7 @@ int main(int argc, char** argv) {
         options.iterations = iterations;
         options.train.background = {background[0], background[1], background[2]};
         if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
-        const auto test = jobs::default_test_views(cameras.size());
+        const auto test = jobs::default_test_views(cameras);
 
         std::map<size_t, io::ImageRGB> test_photos;
         for (size_t v : test) test_photos[v] = read_npy_photo(photos_dir, cameras[v]);

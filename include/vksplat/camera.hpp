@@ -7,6 +7,9 @@ namespace vksplat {
 
 struct Camera {
     std::string name;       // image name as the camera file gives it (may include an extension)
+    // "train" or "test" where the camera file says which (an INRIA cameras.json's "split", as
+    // bonsai's and vksplat train's output have); empty otherwise. jobs::default_test_views reads it.
+    std::string split;
     int width = 0;
     int height = 0;
     double fx = 0, fy = 0;  // focal lengths in pixels

@@ -24,6 +24,8 @@ std::vector<Camera> inria_cameras_from_json(const nlohmann::json& document, cons
         camera.fy = number_field(entry, "fy", at);
         camera.cx = entry.contains("cx") ? number_field(entry, "cx", at) : camera.width / 2.0;
         camera.cy = entry.contains("cy") ? number_field(entry, "cy", at) : camera.height / 2.0;
+        if (const auto split = entry.find("split"); split != entry.end() && split->is_string())
+            camera.split = split->get<std::string>();
         const auto c2w = matrix_field(entry, "rotation", 3, 3, at);  // row-major
         const auto position = matrix_field(entry, "position", 1, 3, at);
         // World-to-camera is the transpose: its column c (glm's [c]) is row c of the file's matrix.
@@ -38,17 +40,8 @@ std::vector<Camera> inria_cameras_from_json(const nlohmann::json& document, cons
 
 }  // namespace detail
 
-std::vector<Camera> read_inria_cameras(const std::filesystem::path& path, std::vector<std::string>* splits) {
-    const nlohmann::json document = detail::read_json_file(path);
-    std::vector<Camera> cameras = detail::inria_cameras_from_json(document, path);
-    if (splits) {
-        splits->clear();
-        for (const nlohmann::json& entry : document) {
-            const auto split = entry.find("split");
-            splits->push_back(split != entry.end() && split->is_string() ? split->get<std::string>() : "");
-        }
-    }
-    return cameras;
+std::vector<Camera> read_inria_cameras(const std::filesystem::path& path) {
+    return detail::inria_cameras_from_json(detail::read_json_file(path), path);
 }
 
 }  // namespace vksplat::io

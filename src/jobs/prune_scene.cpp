@@ -144,7 +144,7 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
                         const PruneOptions& options, const PruneProgress& progress) {
     check_options(options);
     PruneResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
     result.train_views =
         options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
     check_view_indices(result.test_views, cameras.size());

@@ -238,7 +238,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     const std::vector<double> fractions = options.fractions.empty() ? default_sweep_fractions() : options.fractions;
 
     SweepResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
     result.train_views = spread_views(
         options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views,
         options.max_train_views);

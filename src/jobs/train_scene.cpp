@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vksplat/camera_focus.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -48,7 +49,7 @@ void refuse_distortion(const std::vector<std::string>& warnings, const fs::path&
 io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t count, uint64_t seed) {
     glm::dvec3 centre(0.0);
     double half = 0;
-    if (const auto focus = train::common_focus(cameras)) {
+    if (const auto focus = common_focus(cameras)) {
         std::vector<double> seen;
         for (const auto& c : cameras)
             seen.push_back(glm::length(c.centre() - *focus) * 0.5 * c.width / c.fx);
@@ -120,18 +121,15 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
         data.images_dir = data_dir;
     } else if (fs::exists(data_dir / "cameras.json")) {
         data.format = "inria";
-        std::vector<std::string> splits;
-        data.cameras = io::read_inria_cameras(data_dir / "cameras.json", &splits);
-        // Held out by each entry's "split" where every entry names one, else the first 13.
-        if (std::none_of(splits.begin(), splits.end(), [](const std::string& s) { return s.empty(); })) {
-            for (size_t i = 0; i < splits.size(); ++i)
-                (splits[i] == "test" ? data.test_views : data.train_views).push_back(i);
-            if (data.train_views.empty())
-                throw InputError((data_dir / "cameras.json").string(), "every camera is a test view (\"split\")");
-        } else {
-            data.test_views = default_test_views(data.cameras.size());
-            data.train_views = default_train_views(data.cameras.size(), data.test_views);
-        }
+        data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
+        data.test_views = default_test_views(data.cameras);
+        // Without splits, a dozen cameras or fewer are all test and all training views (no held-out
+        // set); a file whose splits name every camera a test view leaves nothing to train on.
+        const bool all_test = std::all_of(data.cameras.begin(), data.cameras.end(),
+                                          [](const Camera& c) { return c.split == "test"; });
+        if (all_test)
+            throw InputError((data_dir / "cameras.json").string(), "every camera is a test view (\"split\")");
+        data.train_views = default_train_views(data.cameras.size(), data.test_views);
         points = points_around_cameras(data.cameras, recipe.random_points, seed);
         data.images_dir = data_dir / "images";
     } else {

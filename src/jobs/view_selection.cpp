@@ -48,7 +48,16 @@ std::vector<size_t> parse_view_list(const std::string& text, size_t count) {
     return views;
 }
 
-std::vector<size_t> default_test_views(size_t camera_count) {
+std::vector<size_t> default_test_views(const std::vector<Camera>& cameras) {
+    const bool split = !cameras.empty() && std::none_of(cameras.begin(), cameras.end(),
+                                                        [](const Camera& c) { return c.split.empty(); });
+    if (split) {
+        std::vector<size_t> views;
+        for (size_t i = 0; i < cameras.size(); ++i)
+            if (cameras[i].split == "test") views.push_back(i);
+        return views;
+    }
+    const size_t camera_count = cameras.size();
     std::vector<size_t> views(camera_count > kInriaTestViews ? kInriaTestViews : camera_count);
     for (size_t i = 0; i < views.size(); ++i) views[i] = i;
     return views;

@@ -51,9 +51,15 @@ protected:
 
 TEST(PruneViews, InriaConventionForTestAndTrainingViews) {
     const std::vector<size_t> first13 = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12};
-    EXPECT_EQ(jobs::default_test_views(100), first13);
-    EXPECT_EQ(jobs::default_test_views(13), first13) << "13 cameras: all are test views";
-    EXPECT_EQ(jobs::default_test_views(3), (std::vector<size_t>{0, 1, 2}));
+    EXPECT_EQ(jobs::default_test_views(std::vector<Camera>(100)), first13);
+    EXPECT_EQ(jobs::default_test_views(std::vector<Camera>(13)), first13) << "13 cameras: all are test views";
+    EXPECT_EQ(jobs::default_test_views(std::vector<Camera>(3)), (std::vector<size_t>{0, 1, 2}));
+    // Where every camera names its split, the split decides; where one does not, the convention.
+    std::vector<Camera> split(20);
+    for (size_t i = 0; i < split.size(); ++i) split[i].split = i % 5 == 2 ? "test" : "train";
+    EXPECT_EQ(jobs::default_test_views(split), (std::vector<size_t>{2, 7, 12, 17}));
+    split[19].split.clear();
+    EXPECT_EQ(jobs::default_test_views(split), first13);
     EXPECT_EQ(jobs::default_train_views(15, first13), (std::vector<size_t>{13, 14}));
     EXPECT_EQ(jobs::default_train_views(3, {0, 1, 2}), (std::vector<size_t>{0, 1, 2})) << "none held out: all";
     EXPECT_EQ(jobs::default_train_views(4, {1, 3}), (std::vector<size_t>{0, 2}));

@@ -12,9 +12,9 @@ namespace vksplat::io {
 
 // INRIA trainer's cameras.json: a list of {id, img_name, width, height, position, rotation, fx, fy}
 // and optional cx, cy (default: the image centre). `rotation` is camera-to-world, given as rows;
-// `position` is the camera centre. Cameras keep the file's order; name = img_name. With `splits`,
-// each camera's "split" (as bonsai's file and vksplat train's output have; "" where absent).
-std::vector<Camera> read_inria_cameras(const std::filesystem::path& path, std::vector<std::string>* splits = nullptr);
+// `position` is the camera centre. Cameras keep the file's order; name = img_name, split = the
+// optional "split".
+std::vector<Camera> read_inria_cameras(const std::filesystem::path& path);
 
 // A COLMAP model: `dir` holds cameras.bin + images.bin or cameras.txt + images.txt, or has them in
 // dir/sparse/0 or dir/0. Models PINHOLE and SIMPLE_PINHOLE are exact; SIMPLE_RADIAL, RADIAL and

@@ -5,15 +5,18 @@
 #include <string>
 #include <vector>
 
+#include "vksplat/camera.hpp"
+
 namespace vksplat::jobs {
 
 // Indices named by `text` ("0,3,5-7"), in the order given, each < count. Empty text or "all"
 // selects every view. Throws InputError for malformed text or an index out of range.
 std::vector<size_t> parse_view_list(const std::string& text, size_t count);
 
-// INRIA's convention: the first 13 cameras are the test views when there are more than 13, else
-// every camera is (and there is no held-out set).
-std::vector<size_t> default_test_views(size_t camera_count);
+// The held-out views: where every camera names its split (Camera::split), the "test" ones; else
+// INRIA's convention, the first 13 cameras when there are more than 13, else every camera (and
+// there is no held-out set).
+std::vector<size_t> default_test_views(const std::vector<Camera>& cameras);
 // Every camera that is not a test view; every camera when that leaves none.
 std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views);
 // The training view of step `iteration` (0-based): the reference walks a fresh random permutation
