@@ -51,9 +51,9 @@ void local_mean(const cv::Mat& plane, const cv::Rect& inner, const cv::Mat& kern
 }
 
 // Sum of the SSIM map of channel `ch` over `rows` output rows starting at output row `first`
-// (output row r is image row r + kRadius).
-double band_ssim_sum(const float* a, const float* b, int width, int channels, int ch, int first,
-                     int rows, const cv::Mat& kernel, Band& band) {
+// (output row r is image row r + kRadius), over the pixels whose `mask` byte is set (all when null).
+double band_ssim_sum(const float* a, const float* b, const uint8_t* mask, int width, int channels, int ch,
+                     int first, int rows, const cv::Mat& kernel, Band& band) {
     const int in_rows = rows + 2 * kRadius;
     for (cv::Mat* plane : {&band.x, &band.y, &band.sum_sq, &band.cross})
         plane->create(in_rows, width, CV_64F);
@@ -86,7 +86,9 @@ double band_ssim_sum(const float* a, const float* b, int width, int channels, in
         const double* uy = band.my.ptr<double>(r);
         const double* uxx_yy = band.m_sum_sq.ptr<double>(r);
         const double* uxy = band.m_cross.ptr<double>(r);
+        const uint8_t* mask_row = mask ? mask + static_cast<size_t>(first + r + kRadius) * width + kRadius : nullptr;
         for (int c = 0; c < inner.width; ++c) {
+            if (mask_row && !mask_row[c]) continue;
             const double means_sq = ux[c] * ux[c] + uy[c] * uy[c];
             const double covariance = uxy[c] - ux[c] * uy[c];
             const double variances = uxx_yy[c] - means_sq;  // sigma_x^2 + sigma_y^2
@@ -97,12 +99,12 @@ double band_ssim_sum(const float* a, const float* b, int width, int channels, in
     return sum;
 }
 
-}  // namespace
-
-double ssim(const float* a, const float* b, int width, int height, int channels) {
-    detail::check_image_pair("ssim", a, b, width, height, channels);
+// Mean of the SSIM map over the valid region's pixels in `mask` (all when null); NaN when none.
+double mean_ssim(const char* metric, const float* a, const float* b, const uint8_t* mask, int width, int height,
+                 int channels) {
+    detail::check_image_pair(metric, a, b, width, height, channels);
     if (width < kWindow || height < kWindow)
-        throw std::invalid_argument("ssim: image " + std::to_string(width) + " x " +
+        throw std::invalid_argument(std::string(metric) + ": image " + std::to_string(width) + " x " +
                                     std::to_string(height) + " is smaller than the " +
                                     std::to_string(kWindow) + " x " + std::to_string(kWindow) +
                                     " window");
@@ -110,6 +112,13 @@ double ssim(const float* a, const float* b, int width, int height, int channels)
     const cv::Mat kernel = gaussian_kernel();
     const int out_width = width - 2 * kRadius;
     const int out_height = height - 2 * kRadius;
+    double counted = static_cast<double>(out_width) * out_height;
+    if (mask) {
+        counted = 0;
+        for (int y = kRadius; y < height - kRadius; ++y)
+            for (int x = kRadius; x < width - kRadius; ++x) counted += mask[static_cast<size_t>(y) * width + x] != 0;
+        if (counted == 0) return NAN;
+    }
     const int bands = (out_height + kBandRows - 1) / kBandRows;
     // One task per (channel, band), run on OpenCV's thread pool. Each task writes its own slot and
     // the slots are summed in order afterwards, so the result does not depend on the thread count.
@@ -119,16 +128,27 @@ double ssim(const float* a, const float* b, int width, int height, int channels)
         for (int t = tasks.start; t < tasks.end; ++t) {
             const int first = (t % bands) * kBandRows;
             const int rows = std::min(kBandRows, out_height - first);
-            sums[t] = band_ssim_sum(a, b, width, channels, t / bands, first, rows, kernel, band);
+            sums[t] = band_ssim_sum(a, b, mask, width, channels, t / bands, first, rows, kernel, band);
         }
     });
     double total = 0.0;
     for (int ch = 0; ch < channels; ++ch) {
         double channel_sum = 0.0;
         for (int i = 0; i < bands; ++i) channel_sum += sums[static_cast<size_t>(ch) * bands + i];
-        total += channel_sum / (static_cast<double>(out_width) * out_height);
+        total += channel_sum / counted;
     }
     return total / channels;
+}
+
+}  // namespace
+
+double ssim(const float* a, const float* b, int width, int height, int channels) {
+    return mean_ssim("ssim", a, b, nullptr, width, height, channels);
+}
+
+double masked_ssim(const float* a, const float* b, const uint8_t* mask, int width, int height, int channels) {
+    if (!mask) throw std::invalid_argument("masked_ssim: null mask");
+    return mean_ssim("masked_ssim", a, b, mask, width, height, channels);
 }
 
 }  // namespace vksplat::eval

@@ -2,7 +2,7 @@
 #include "vksplat/jobs/subject_quality.hpp"
 
 #include <cmath>
-#include <limits>
+#include <cstdio>
 
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
@@ -12,74 +12,86 @@
 namespace vksplat::jobs {
 namespace {
 
-struct Box {
-    int x0, y0, x1, y1;  // [x0, x1) x [y0, y1)
-};
-
-Box central_box(int width, int height) { return {width / 6, height / 6, width - width / 6, height - height / 6}; }
-
-std::vector<uint8_t> subject_mask(const RenderOutput& unpruned) {
-    const Box box = central_box(unpruned.width, unpruned.height);
-    std::vector<uint8_t> mask(unpruned.alpha.size(), 0);
-    for (int y = box.y0; y < box.y1; ++y)
-        for (int x = box.x0; x < box.x1; ++x) {
-            const size_t p = size_t(y) * unpruned.width + x;
-            mask[p] = unpruned.alpha[p] > 0.5f;
-        }
+std::vector<uint8_t> mask_from_image(const std::filesystem::path& dir, const Camera& camera) {
+    const auto path = io::find_image(dir, camera.name);
+    const io::ImageRGB image = io::read_image_rgb(path, {0, 0, 0});
+    if (image.width != camera.width || image.height != camera.height)
+        throw InputError(path.string(), "subject mask is " + std::to_string(image.width) + "x" +
+                                            std::to_string(image.height) + ", but camera '" + camera.name + "' is " +
+                                            std::to_string(camera.width) + "x" + std::to_string(camera.height));
+    std::vector<uint8_t> mask(size_t(image.width) * image.height);
+    for (size_t p = 0; p < mask.size(); ++p)
+        mask[p] = image.rgb[3 * p] + image.rgb[3 * p + 1] + image.rgb[3 * p + 2] > 1.5f;
     return mask;
 }
 
-double masked_psnr(const std::vector<float>& a, const std::vector<float>& b, const std::vector<uint8_t>& mask) {
-    double squared = 0;
-    size_t count = 0;
-    for (size_t p = 0; p < mask.size(); ++p) {
-        if (!mask[p]) continue;
-        for (int c = 0; c < 3; ++c) {
-            const double d = std::clamp(a[p * 3 + c], 0.0f, 1.0f) - std::clamp(b[p * 3 + c], 0.0f, 1.0f);
-            squared += d * d;
-            ++count;
-        }
+// Sums of one comparison over the views; the subject's only over views that have subject pixels.
+struct ScoreSums {
+    SubjectScores sum;
+    size_t views = 0, subject_views = 0;
+
+    void add(const std::vector<float>& image, const std::vector<float>& target, const std::vector<uint8_t>& mask,
+             int width, int height) {
+        sum.psnr += eval::psnr(image.data(), target.data(), width, height);
+        sum.ssim += eval::ssim(image.data(), target.data(), width, height);
+        ++views;
+        const double p = eval::masked_psnr(image.data(), target.data(), mask.data(), width, height);
+        const double s = eval::masked_ssim(image.data(), target.data(), mask.data(), width, height);
+        if (std::isnan(p) || std::isnan(s)) return;
+        sum.subject_psnr += p;
+        sum.subject_ssim += s;
+        ++subject_views;
     }
-    if (count == 0) return std::numeric_limits<double>::quiet_NaN();
-    const double mse = squared / double(count);
-    return mse > 0 ? 10.0 * std::log10(1.0 / mse) : std::numeric_limits<double>::infinity();
-}
-
-std::vector<float> crop(const std::vector<float>& rgb, int width, const Box& box) {
-    std::vector<float> out;
-    out.reserve(size_t(box.x1 - box.x0) * size_t(box.y1 - box.y0) * 3);
-    for (int y = box.y0; y < box.y1; ++y)
-        out.insert(out.end(), rgb.begin() + (size_t(y) * width + box.x0) * 3, rgb.begin() + (size_t(y) * width + box.x1) * 3);
-    return out;
-}
-
-void add(SubjectScores& sum, const std::vector<float>& image, const std::vector<float>& target,
-         const std::vector<uint8_t>& mask, int width, int height) {
-    const Box box = central_box(width, height);
-    sum.psnr += eval::psnr(image.data(), target.data(), width, height);
-    sum.ssim += eval::ssim(image.data(), target.data(), width, height);
-    sum.subject_psnr += masked_psnr(image, target, mask);
-    sum.subject_ssim += eval::ssim(crop(image, width, box).data(), crop(target, width, box).data(), box.x1 - box.x0,
-                                   box.y1 - box.y0);
-}
-
-void divide(SubjectScores& s, double n) {
-    s.psnr /= n;
-    s.ssim /= n;
-    s.subject_psnr /= n;
-    s.subject_ssim /= n;
-}
+    SubjectScores mean() const {
+        SubjectScores m;
+        m.psnr = sum.psnr / double(views);
+        m.ssim = sum.ssim / double(views);
+        m.subject_psnr = subject_views ? sum.subject_psnr / double(subject_views) : NAN;
+        m.subject_ssim = subject_views ? sum.subject_ssim / double(subject_views) : NAN;
+        return m;
+    }
+};
 
 }  // namespace
+
+SubjectSpec parse_subject_spec(const std::string& subject, const std::string& masks_dir) {
+    SubjectSpec spec;
+    if (!masks_dir.empty()) {
+        if (!std::filesystem::is_directory(masks_dir)) throw InputError(masks_dir, "subject masks folder not found");
+        spec.masks_dir = masks_dir;
+        return spec;
+    }
+    if (!subject.empty() && subject != "auto") spec.ball = eval::parse_subject_ball(subject);
+    return spec;
+}
+
+SubjectMasks subject_masks(const SubjectSpec& spec, const std::vector<Camera>& cameras, std::string* description) {
+    if (spec.masks_dir) {
+        if (description) *description = "masks in " + spec.masks_dir->string();
+        return [dir = *spec.masks_dir](const Camera& camera, const RenderOutput&) { return mask_from_image(dir, camera); };
+    }
+    const eval::SubjectBall ball = spec.ball ? *spec.ball : eval::auto_subject_ball(cameras);
+    if (description) {
+        char text[160];
+        std::snprintf(text, sizeof(text), "%s ball at (%.4g, %.4g, %.4g), radius %.4g", spec.ball ? "given" : "automatic",
+                      ball.centre.x, ball.centre.y, ball.centre.z, ball.radius);
+        *description = text;
+    }
+    return [ball](const Camera& camera, const RenderOutput& unpruned) { return eval::subject_mask(unpruned, camera, ball); };
+}
 
 SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& unpruned, const GaussianCloud& pruned,
                                        const std::vector<Camera>& test_cameras,
                                        const std::optional<std::filesystem::path>& images_dir,
-                                       const RenderSettings& settings) {
+                                       const RenderSettings& settings, const SubjectMasks& masks) {
     if (test_cameras.empty()) throw InputError("subject quality", "no test views");
     std::vector<RenderOutput> references;
+    std::vector<std::vector<uint8_t>> regions;
     renderer.set_scene(unpruned);
-    for (const Camera& camera : test_cameras) references.push_back(renderer.render(camera, settings));
+    for (const Camera& camera : test_cameras) {
+        references.push_back(renderer.render(camera, settings));
+        regions.push_back(masks(camera, references.back()));
+    }
     std::vector<std::vector<float>> photos;
     if (images_dir)
         for (const Camera& camera : test_cameras) {
@@ -91,28 +103,26 @@ SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& 
         }
 
     SubjectQuality q;
-    SubjectScores before, after_photo;
+    ScoreSums against_unpruned, before, after;
     renderer.set_scene(pruned);
     for (size_t v = 0; v < test_cameras.size(); ++v) {
         const RenderOutput image = renderer.render(test_cameras[v], settings);
         const RenderOutput& reference = references[v];
-        const std::vector<uint8_t> mask = subject_mask(reference);
+        const std::vector<uint8_t>& mask = regions[v];
         size_t inside = 0;
-        for (uint8_t m : mask) inside += m;
+        for (uint8_t m : mask) inside += m != 0;
         q.subject_fraction += double(inside) / double(mask.size());
-        add(q.pruned_vs_unpruned, image.rgb, reference.rgb, mask, image.width, image.height);
+        q.views_without_subject += inside == 0;
+        against_unpruned.add(image.rgb, reference.rgb, mask, image.width, image.height);
         if (photos.empty()) continue;
-        add(before, reference.rgb, photos[v], mask, image.width, image.height);
-        add(after_photo, image.rgb, photos[v], mask, image.width, image.height);
+        before.add(reference.rgb, photos[v], mask, image.width, image.height);
+        after.add(image.rgb, photos[v], mask, image.width, image.height);
     }
-    const double n = double(test_cameras.size());
-    q.subject_fraction /= n;
-    divide(q.pruned_vs_unpruned, n);
+    q.subject_fraction /= double(test_cameras.size());
+    q.pruned_vs_unpruned = against_unpruned.mean();
     if (!photos.empty()) {
-        divide(before, n);
-        divide(after_photo, n);
-        q.unpruned_vs_photos = before;
-        q.pruned_vs_photos = after_photo;
+        q.unpruned_vs_photos = before.mean();
+        q.pruned_vs_photos = after.mean();
     }
     return q;
 }

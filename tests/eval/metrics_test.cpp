@@ -47,6 +47,8 @@ std::vector<float> make_test_image(int width, int height, int channels, uint32_t
     return img;
 }
 
+constexpr int kSsimRadius = 5;  // the 11-tap window's half-width
+
 struct Reference {
     int width, height, channels;
     uint32_t seed;
@@ -117,6 +119,44 @@ TEST(Metrics, ConstantOffsetGivesClosedFormPsnr) {
     std::fill(a.begin(), a.end(), 0.9375f);
     std::fill(b.begin(), b.end(), 0.9375f + 0.125f);
     EXPECT_NEAR(psnr(a.data(), b.data(), w, h), -20.0 * std::log10(0.0625), 1e-9);
+}
+
+TEST(Metrics, AFullMaskGivesTheUnmaskedScores) {
+    const Reference& ref = kReferences[1];
+    const auto a = make_test_image(ref.width, ref.height, 3, ref.seed, 0);
+    const auto b = make_test_image(ref.width, ref.height, 3, ref.seed, 1);
+    const std::vector<uint8_t> all(size_t(ref.width) * ref.height, 1);
+    EXPECT_NEAR(masked_psnr(a.data(), b.data(), all.data(), ref.width, ref.height), ref.psnr, 1e-6);
+    EXPECT_NEAR(masked_ssim(a.data(), b.data(), all.data(), ref.width, ref.height), ref.ssim, 1e-6);
+}
+
+TEST(Metrics, AMaskCountsOnlyItsPixels) {
+    // The images differ by 0.125 on the left half and agree on the right half.
+    const int w = 40, h = 30;
+    std::vector<float> a = make_test_image(w, h, 3, 3, 0), b = a;
+    std::vector<uint8_t> left(size_t(w) * h, 0), right(size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = 0; x < w; ++x) {
+            (x < w / 2 ? left : right)[size_t(y) * w + x] = 1;
+            if (x >= w / 2) continue;
+            for (int c = 0; c < 3; ++c) {
+                float& v = a[(size_t(y) * w + x) * 3 + c];
+                v = 0.25f + 0.5f * std::clamp(v, 0.0f, 1.0f);
+                b[(size_t(y) * w + x) * 3 + c] = v + 0.125f;
+            }
+        }
+    EXPECT_NEAR(masked_psnr(a.data(), b.data(), left.data(), w, h), -20.0 * std::log10(0.125), 1e-5);
+    EXPECT_EQ(masked_psnr(a.data(), b.data(), right.data(), w, h), std::numeric_limits<double>::infinity());
+    // SSIM windows reach across the seam, so only right-half pixels 6 or more from it score 1.
+    std::vector<uint8_t> far_right(size_t(w) * h, 0);
+    for (int y = 0; y < h; ++y)
+        for (int x = w / 2 + kSsimRadius + 1; x < w; ++x) far_right[size_t(y) * w + x] = 1;
+    EXPECT_NEAR(masked_ssim(a.data(), b.data(), far_right.data(), w, h), 1.0, 1e-12);
+    EXPECT_LT(masked_ssim(a.data(), b.data(), left.data(), w, h), 0.999);
+    const std::vector<uint8_t> none(size_t(w) * h, 0);
+    EXPECT_TRUE(std::isnan(masked_psnr(a.data(), b.data(), none.data(), w, h)));
+    EXPECT_TRUE(std::isnan(masked_ssim(a.data(), b.data(), none.data(), w, h)));
+    EXPECT_THROW(masked_psnr(a.data(), b.data(), nullptr, w, h), std::invalid_argument);
 }
 
 TEST(Metrics, RejectsBadSizes) {

@@ -29,6 +29,13 @@ double psnr(const float* a, const float* b, int width, int height, int channels 
 // Both sides must be at least 11 pixels; smaller images throw std::invalid_argument.
 double ssim(const float* a, const float* b, int width, int height, int channels = 3);
 
+// The same two over a region: `mask` holds width * height bytes, non-zero where a pixel counts.
+// masked_psnr takes the MSE over those pixels' values; masked_ssim averages the SSIM map over the
+// valid-region pixels in the mask (the windows still read their unmasked neighbours: SSIM is a
+// statement about a pixel's surroundings). NaN when no pixel counts; a null mask throws.
+double masked_psnr(const float* a, const float* b, const uint8_t* mask, int width, int height, int channels = 3);
+double masked_ssim(const float* a, const float* b, const uint8_t* mask, int width, int height, int channels = 3);
+
 // Per-pixel error: the mean over channels of |a - b|, width * height values, row-major.
 std::vector<float> error_map(const float* a, const float* b, int width, int height, int channels = 3);
 

@@ -1,22 +1,39 @@
 #pragma once
 // Quality of a pruned scene on test views, over the whole picture and inside the subject's region.
-// The subject region of a view: the pixels where the *unpruned* render's alpha exceeds 0.5 inside
-// the central box (the middle two thirds of the width and of the height: [W/6, 5W/6) x [H/6, 5H/6)).
-// It is fixed by the unpruned scene, so every pruned variant is measured on the same pixels.
-// Subject PSNR is the PSNR of those pixels; subject SSIM is the SSIM of the central box (SSIM
-// needs whole windows, so it cannot follow the alpha outline).
+// The subject region of a view is fixed by the unpruned scene (eval/subject_region.hpp) or by a
+// mask image the user made, so every pruned variant is measured on the same pixels. Subject PSNR
+// is the PSNR of those pixels, subject SSIM the mean of the SSIM map over them.
 #include <filesystem>
+#include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "vksplat/camera.hpp"
+#include "vksplat/eval/subject_region.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::jobs {
 
+// Where the subject is: `ball` (automatic when unset), or, with masks_dir, one image per view named
+// like its photo (io::find_image), subject where it is brighter than mid-grey.
+struct SubjectSpec {
+    std::optional<eval::SubjectBall> ball;
+    std::optional<std::filesystem::path> masks_dir;
+};
+
+// "auto", "x,y,z,r" or the masks folder: what --subject / --subject-masks take. Throws InputError.
+SubjectSpec parse_subject_spec(const std::string& subject, const std::string& masks_dir);
+
+// The subject mask of a view (one byte per pixel) from the unpruned scene's render of `camera`.
+using SubjectMasks = std::function<std::vector<uint8_t>(const Camera& camera, const RenderOutput& unpruned)>;
+// `cameras`: all of the capture's, which the automatic ball is found from. Throws InputError when
+// the automatic ball has no focus; mask images are read (and checked) when asked for.
+SubjectMasks subject_masks(const SubjectSpec& spec, const std::vector<Camera>& cameras, std::string* description = nullptr);
+
 struct SubjectScores {
     double psnr = 0, ssim = 0;                  // whole picture, mean over views
-    double subject_psnr = 0, subject_ssim = 0;  // subject region, mean over views
+    double subject_psnr = 0, subject_ssim = 0;  // subject region, mean over the views that have one
 };
 
 struct SubjectQuality {
@@ -24,12 +41,13 @@ struct SubjectQuality {
     std::optional<SubjectScores> pruned_vs_photos;    // with photos only
     SubjectScores pruned_vs_unpruned;
     double subject_fraction = 0;                      // mean share of pixels in the subject region
+    size_t views_without_subject = 0;                 // test views whose region is empty
 };
 
 // Photos are looked up by camera name in images_dir (io::find_image) when it is given.
 SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& unpruned, const GaussianCloud& pruned,
                                        const std::vector<Camera>& test_cameras,
                                        const std::optional<std::filesystem::path>& images_dir,
-                                       const RenderSettings& settings);
+                                       const RenderSettings& settings, const SubjectMasks& masks);
 
 }  // namespace vksplat::jobs
