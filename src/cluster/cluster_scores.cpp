@@ -5,6 +5,7 @@
 #include <cmath>
 #include <numeric>
 
+#include "vksplat/cluster/centrality.hpp"
 #include "vksplat/cluster/region_map.hpp"
 #include "vksplat/error.hpp"
 
@@ -130,10 +131,14 @@ ClusterScores score_clusters(std::span<const float> positions, std::span<const i
     for (size_t g = 0; g < contribution.size(); ++g)
         largest[size_t(cluster_of[g])] = std::max(largest[size_t(cluster_of[g])], double(contribution[g]));
     s.contribution = normalise(largest);
+    s.centrality.assign(clusters, 0.0);
+    const std::vector<float> centrality = view_centrality(positions, cameras);
+    for (size_t g = 0; g < n; ++g) s.centrality[size_t(cluster_of[g])] += centrality[g];
+    for (size_t c = 0; c < clusters; ++c) s.centrality[c] /= count[c];
     s.score.resize(clusters);
     for (size_t c = 0; c < clusters; ++c)
         s.score[c] = -weights.alpha * s.spatial[c] - weights.beta * s.depth[c] + weights.gamma * s.mvr[c] +
-                     weights.kappa * s.contribution[c];
+                     weights.kappa * s.contribution[c] + weights.lambda * (s.centrality[c] >= weights.central_threshold ? 1.0 : 0.0);
     return s;
 }
 

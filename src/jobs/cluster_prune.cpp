@@ -25,9 +25,10 @@ std::string format(const char* pattern, auto... values) {
 
 }  // namespace
 
-std::vector<size_t> region_views(size_t camera_count, const ClusterOptions& options) {
+std::vector<size_t> region_views(const std::vector<Camera>& cameras, const ClusterOptions& options) {
+    const size_t camera_count = cameras.size();
     std::vector<size_t> views = options.views;
-    if (views.empty()) views = default_train_views(camera_count, default_test_views(camera_count));
+    if (views.empty()) views = default_train_views(camera_count, default_test_views(cameras));
     for (size_t view : views)
         if (view >= camera_count)
             throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
@@ -55,7 +56,7 @@ std::vector<RegionView> make_region_maps(Renderer& renderer, const GaussianCloud
                                          const prune::Progress& progress) {
     if (!(options.resolution_scale > 0 && options.resolution_scale <= 4))
         throw InputError("--resolution-scale", "must lie in (0, 4]");
-    const std::vector<size_t> views = region_views(cameras.size(), options);
+    const std::vector<size_t> views = region_views(cameras, options);
     renderer.set_scene(cloud);
     std::vector<RegionView> out;
     out.reserve(views.size());
@@ -180,16 +181,24 @@ cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster:
     return clustering;
 }
 
-void log_score_table(const cluster::ClusterScores& scores, const Log& log) {
-    say(log, "percentile   spatial    depth      MVR        contrib.   G*");
+void log_score_table(const cluster::ClusterScores& scores, const cluster::ScoreWeights& weights, const Log& log) {
+    say(log, "percentile   spatial    depth      MVR        contrib.   central.   G*");
     const auto spatial = cluster::percentiles(scores.spatial, cluster::kReportPercents);
     const auto depth = cluster::percentiles(scores.depth, cluster::kReportPercents);
     const auto mvr = cluster::percentiles(scores.mvr, cluster::kReportPercents);
     const auto contribution = cluster::percentiles(scores.contribution, cluster::kReportPercents);
+    const auto centrality = cluster::percentiles(scores.centrality, cluster::kReportPercents);
     const auto total = cluster::percentiles(scores.score, cluster::kReportPercents);
     for (size_t k = 0; k < cluster::kReportPercents.size(); ++k)
-        say(log, format("%9.0f%%   %-9.4f  %-9.4f  %-9.4f  %-9.4f  %-9.4f", cluster::kReportPercents[k], spatial[k],
-                        depth[k], mvr[k], contribution[k], total[k]));
+        say(log, format("%9.0f%%   %-9.4f  %-9.4f  %-9.4f  %-9.4f  %-9.4f  %-9.4f", cluster::kReportPercents[k],
+                        spatial[k], depth[k], mvr[k], contribution[k], centrality[k], total[k]));
+    size_t central = 0, gaussians = 0;
+    for (size_t c = 0; c < scores.size(); ++c) {
+        gaussians += scores.members[c];
+        if (scores.centrality[c] >= weights.central_threshold) central += scores.members[c];
+    }
+    say(log, format("central (centrality >= %.3g): %zu of %zu Gaussians (%.1f%%)", weights.central_threshold, central,
+                    gaussians, gaussians ? 100.0 * double(central) / double(gaussians) : 0.0));
 }
 
 std::vector<float> cluster_gaussian_scores(Renderer& renderer, const gpu::Context& context, const GaussianCloud& input,
@@ -206,7 +215,7 @@ std::vector<float> cluster_gaussian_scores(Renderer& renderer, const gpu::Contex
     for (const RegionView* view : used) used_cameras.push_back(cameras[view->view]);
     const cluster::ClusterScores scores = cluster::score_clusters(cloud.positions, clustering.cluster_of, projected.labels,
                                                                   used_cameras, options.weights, projected.contribution);
-    log_score_table(scores, log);
+    log_score_table(scores, options.weights, log);
     std::vector<float> ranks = cluster::gaussian_scores(scores, clustering.cluster_of);
     if (report.kept_indices.empty()) return ranks;
     std::vector<float> out(input.size(), -std::numeric_limits<float>::infinity());

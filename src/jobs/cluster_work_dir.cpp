@@ -3,12 +3,15 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <map>
 #include <regex>
 
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/npy.hpp"
 #include "vksplat/io/ply.hpp"
+#include "vksplat/jobs/view_selection.hpp"
+#include "vksplat/prune/selection.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -26,7 +29,7 @@ std::string view_stem(size_t view) {
 }
 
 // Columns of cluster_scores.npy (see cluster_work_dir.hpp).
-constexpr size_t kScoreColumns = 8;
+constexpr size_t kScoreColumns = 9;
 
 fs::path regions_dir(const ClusterStageIo& io) { return io.work / "regions"; }
 fs::path projection_file(const ClusterStageIo& io) { return io.work / "projection.npy"; }
@@ -138,7 +141,7 @@ void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::ve
                    const ClusterOptions& options, const std::optional<fs::path>& import_dir, const ClusterStageIo& io) {
     const fs::path dir = regions_dir(io);
     fs::create_directories(dir);
-    for (size_t view : region_views(cameras.size(), options)) refuse_existing(dir / (view_stem(view) + ".npy"), io);
+    for (size_t view : region_views(cameras, options)) refuse_existing(dir / (view_stem(view) + ".npy"), io);
     if (import_dir && !fs::is_directory(*import_dir)) throw InputError(import_dir->string(), "is not a folder");
     RegionSource source;
     if (import_dir) source = [&](size_t view) { return import_map(*import_dir, view, cameras[view]); };
@@ -210,12 +213,12 @@ cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector
     const std::vector<float> contribution = load_contribution(cloud.size(), options.weights, io);
     cluster::ClusterScores scores =
         cluster::score_clusters(cloud.positions, cluster_of, labels, used, options.weights, contribution);
-    log_score_table(scores, io.log);
+    log_score_table(scores, options.weights, io.log);
     std::vector<float> table(scores.size() * kScoreColumns);
     for (size_t c = 0; c < scores.size(); ++c) {
         const double row[kScoreColumns] = {scores.spatial_raw[c], scores.depth_raw[c],      scores.spatial[c],
                                            scores.depth[c],       scores.mvr[c],            scores.score[c],
-                                           scores.contribution_raw[c], scores.contribution[c]};
+                                           scores.contribution_raw[c], scores.contribution[c], scores.centrality[c]};
         for (size_t k = 0; k < kScoreColumns; ++k) table[c * kScoreColumns + k] = float(row[k]);
     }
     io::write_npy(scores_file(io), table.data(), {scores.size(), kScoreColumns}, io.mode);
@@ -235,14 +238,15 @@ SavedClusterScores load_cluster_scores(size_t gaussians, const ClusterStageIo& i
     require(scores_file(io), "score");
     const io::NpyArray table = io::read_npy(scores_file(io));
     const auto values = table.values<float>();
-    // 6 columns: a table from before the contribution term (G* only, no contribution limit).
-    if (table.shape.size() != 2 || (table.shape[1] != kScoreColumns && table.shape[1] != 6))
+    // 6 columns: a table from before the contribution term (G* only, no contribution limit); 8: from
+    // before the centrality term. Pruning reads G* and the contributions alone.
+    if (table.shape.size() != 2 || (table.shape[1] != kScoreColumns && table.shape[1] != 8 && table.shape[1] != 6))
         throw InputError(scores_file(io).string(), "is not a [clusters, " + std::to_string(kScoreColumns) + "] table");
     const size_t columns = table.shape[1];
     cluster::ClusterScores& scores = saved.scores;
     scores.score.resize(table.shape[0]);
     for (size_t c = 0; c < scores.score.size(); ++c) scores.score[c] = values[c * columns + 5];
-    if (columns == kScoreColumns) {
+    if (columns >= 8) {
         scores.contribution_raw.resize(table.shape[0]);
         for (size_t c = 0; c < scores.size(); ++c) scores.contribution_raw[c] = values[c * columns + 6];
     }
@@ -300,6 +304,50 @@ ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud
     prune::BudgetResult fitted = prune::fit_quality_budget(renderer, cloud, ranking, views, budget, settings, on_probe);
     ClusterPruneResult result = write_pruned(cloud, fitted.keep, saved.scores.size(), saved.cluster_of, out, io);
     result.budget = std::move(fitted);
+    return result;
+}
+
+ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
+                                   const std::vector<Camera>& cameras, const ClusterOptions& options,
+                                   const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
+                                   const fs::path& out, const ClusterStageIo& io,
+                                   const std::function<void(const FinetuneStatus&)>& progress) {
+    refuse_existing(out, io);
+    const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
+    const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
+    for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
+    const prune::Ranking ranking(cluster::gaussian_scores(saved.scores, saved.cluster_of), prune::keep_all(cloud.size()));
+
+    ClusterRecoverResult result;
+    std::map<size_t, std::vector<uint8_t>> masks;
+    if (subject) {
+        FinetuneOptions& finetune = recover.finetune;
+        const auto test = finetune.test_views.empty() ? default_test_views(cameras) : finetune.test_views;
+        if (finetune.train_views.empty()) finetune.train_views = default_train_views(cameras.size(), test);
+        check_view_indices(finetune.train_views, cameras.size());
+        RenderSettings settings;
+        settings.background = finetune.train.background;
+        renderer.set_scene(cloud);
+        for (size_t view : finetune.train_views)
+            masks[view] = subject(cameras[view], renderer.render(cameras[view], settings));
+        finetune.loss_masks = [&masks](size_t view) { return masks.at(view); };
+        result.masked_views = masks.size();
+    }
+    recover.rounds = 1;
+    result.recover = prune_and_recover(context, renderer, cloud, ranking, selection.gaussians_kept, cameras, photos,
+                                       recover, {}, [&](int, const FinetuneStatus& s) {
+                                           if (progress) progress(s);
+                                       });
+    const GaussianCloud& refitted = result.recover.cloud;
+    io::write_ply(refitted, out, io.mode);
+    result.prune.count_before = cloud.size();
+    result.prune.count_after = refitted.size();
+    result.prune.bytes_before = cloud.ply_bytes();
+    result.prune.bytes_after = refitted.ply_bytes();
+    result.prune.clusters = saved.scores.size();
+    result.prune.clusters_dropped = selection.clusters_dropped;
+    result.prune.contribution_dropped = selection.contribution_dropped;
+    result.prune.stopped_by_contribution = selection.stopped_by_contribution;
     return result;
 }
 

@@ -29,14 +29,17 @@ double median(std::vector<double> values) {
 
 }  // namespace
 
-train::Photo training_photo(const PhotoSource& photos, const Camera& camera) {
+train::Photo training_photo(const PhotoSource& photos, const Camera& camera, const std::vector<uint8_t>& loss_mask) {
     const io::ImageRGB image = photos(camera);
     if (image.width != camera.width || image.height != camera.height)
         throw InputError("photo of camera '" + camera.name + "'",
                          "is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                              " but the camera is " + std::to_string(camera.width) + "x" +
                              std::to_string(camera.height));
-    return train::Photo::from_image(image);
+    if (loss_mask.empty()) return train::Photo::from_image(image);
+    if (loss_mask.size() != size_t(camera.width) * size_t(camera.height))
+        throw InputError("loss mask of camera '" + camera.name + "'", "is not the camera's size");
+    return train::Photo::from_image(image, loss_mask);
 }
 
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
@@ -44,7 +47,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
                               const FinetuneOptions& options, const QualityProbe& quality,
                               const std::function<void(const FinetuneStatus&)>& progress) {
     FinetuneResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras.size()) : options.test_views;
+    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
     result.train_views =
         options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
     check_view_indices(result.test_views, cameras.size());
@@ -57,7 +60,8 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     // Every photo is read and checked before the first step: a bad one found late would waste the run.
     std::map<size_t, train::Photo> train_photos;
     for (size_t view : result.train_views) {
-        train_photos.emplace(view, training_photo(photos, cameras[view]));
+        train_photos.emplace(view, training_photo(photos, cameras[view],
+                                                  options.loss_masks ? options.loss_masks(view) : std::vector<uint8_t>{}));
     }
 
     train::TrainOptions train_options = options.train;

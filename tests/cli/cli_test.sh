@@ -126,7 +126,7 @@ expect cluster-rescore 0 "percentile" -- "$vksplat" cluster score "$work/demo/de
 expect cluster-reprune 0 "wrote $work/half_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.5 -o "$work/half_clusters.ply"
 expect cluster-original-method 0 "percentile" -- "$vksplat" cluster score "$work/demo/demo.ply" \
-  --cameras "$work/three.json" --work "$work/cw" --alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --force
+  --cameras "$work/three.json" --work "$work/cw" --alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --lambda 0 --force
 expect cluster-original-prune 0 "wrote $work/original_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1 \
   -o "$work/original_clusters.ply"
@@ -134,13 +134,33 @@ expect cluster-quality-budget 0 "quality budget 0.500 dB: kept" -- "$vksplat" cl
   --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --test-views 0-2 -o "$work/budget_clusters.ply"
 expect cluster-budget-or-ratio any-failure "--max-psnr-drop" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --prune-ratio 0.5 -o "$work/bad.ply"
-expect cluster-help-says-the-original 0 "--kappa 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
+expect cluster-help-says-the-original 0 "--kappa 0 --lambda 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
 expect cluster-bad-ratio-of any-failure "--ratio-of" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --ratio-of splats -o "$work/bad.ply"
 expect cluster-needs-earlier-stage 2 "run \`vksplat cluster project\` first" -- "$vksplat" cluster build \
   "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/empty_work"
 expect cluster-bad-delta 2 "--delta-dist x: expected a distance or auto" -- "$vksplat" cluster build \
   "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw" --delta-dist x --force
+
+# The subject region and a subject-masked re-fit, on a ring of cameras around the demo scene.
+cat >"$work/ring.json" <<'JSON'
+[{"id": 0, "img_name": "r0", "width": 80, "height": 60, "position": [1.477601, 0.8, 4.776682], "rotation": [[-0.955336, -0.046689, -0.291809], [0.0, 0.987441, -0.157991], [0.29552, -0.150934, -0.943338]], "fx": 70, "fy": 70},
+ {"id": 1, "img_name": "r1", "width": 80, "height": 60, "position": [4.776682, 0.8, -1.477601], "rotation": [[0.29552, -0.150934, -0.943338], [0.0, 0.987441, -0.157991], [0.955336, 0.046689, 0.291809]], "fx": 70, "fy": 70},
+ {"id": 2, "img_name": "r2", "width": 80, "height": 60, "position": [-1.477601, 0.8, -4.776682], "rotation": [[0.955336, 0.046689, 0.291809], [0.0, 0.987441, -0.157991], [-0.29552, 0.150934, 0.943338]], "fx": 70, "fy": 70},
+ {"id": 3, "img_name": "r3", "width": 80, "height": 60, "position": [-4.776682, 0.8, 1.477601], "rotation": [[-0.29552, 0.150934, 0.943338], [-0.0, 0.987441, -0.157991], [-0.955336, -0.046689, -0.291809]], "fx": 70, "fy": 70}]
+JSON
+expect ring-photos 0 "wrote 4 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/ring.json" \
+  --out "$work/ring_photos"
+expect cluster-subject 0 "subject region (automatic ball at" -- "$vksplat" cluster run "$work/demo/demo.ply" \
+  --cameras "$work/ring.json" --work "$work/ring_work" --seg-k 150 --images "$work/ring_photos" -o "$work/ring.ply"
+expect cluster-recover 0 "re-fitted 10 iterations" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/ring.json" --work "$work/ring_work" --images "$work/ring_photos" --recover 10 -o "$work/ring_refit.ply"
+expect cluster-recover-needs-photos 2 "--recover: needs the photos" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/ring.json" --work "$work/ring_work" --recover 10 -o "$work/ring_x.ply"
+expect cluster-bad-subject 2 "expected auto or x,y,z,r" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/ring.json" --work "$work/ring_work" --images "$work/ring_photos" --subject 1,2 -o "$work/ring_x.ply"
+expect cluster-subject-needs-focus 2 "the cameras have no common focus" -- "$vksplat" cluster prune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw" --images "$work/photos" -o "$work/x.ply"
 
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"

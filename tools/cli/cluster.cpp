@@ -13,6 +13,7 @@
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/cluster_work_dir.hpp"
+#include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
 #include "vksplat/jobs/subject_quality.hpp"
 #include "vksplat/jobs/view_selection.hpp"
@@ -23,9 +24,12 @@ namespace {
 struct ClusterArgs {
     GpuOptions gpu;
     std::string scene, cameras, work, out, import_dir, images, test_views;
+    std::string subject = "auto", subject_masks;
     std::string ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
+    std::optional<uint64_t> recover;
+    std::string recover_loss = "subject";
     bool force = false;
     ClusterStageArgs stage;  // the options of stages 1-6
 };
@@ -63,7 +67,26 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
         ->excludes(contribution);
     c.add_option("-o,--out", a.out, "pruned scene (.ply)")->required();
     c.add_option("--images", a.images, "photos: measure the test views against them too")->check(CLI::ExistingDirectory);
-    c.add_option("--test-views", a.test_views, "views to measure on (default: the first 13)");
+    c.add_option("--test-views", a.test_views, "views to measure on (default: the cameras' test split, else the first 13)");
+    auto* subject = c.add_option("--subject", a.subject,
+                                 "the subject region the test views are also scored in: auto (the ball around the "
+                                 "cameras' common focus, radius 0.3 x their median distance to it) or x,y,z,r")
+                        ->capture_default_str();
+    c.add_option("--subject-masks", a.subject_masks,
+                 "instead: a folder of subject mask images named like the photos (white = subject)")
+        ->check(CLI::ExistingDirectory)
+        ->excludes(subject);
+    auto* recover = c.add_option("--recover", a.recover,
+                                 "then re-fit what is kept for N iterations on the training views' photos (--images), "
+                                 "in one round")
+                        ->check(CLI::PositiveNumber);
+    recover->excludes(c.get_option("--max-psnr-drop"));
+    c.add_option("--recover-loss", a.recover_loss,
+                 "with --recover: what the loss looks at, the subject region of each view (background pixels "
+                 "ignored) or the whole picture")
+        ->check(CLI::IsMember({"subject", "picture"}))
+        ->capture_default_str()
+        ->needs(recover);
 }
 
 void log_line(const std::string& line) {
@@ -95,7 +118,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
 
     std::unique_ptr<gpu::Context> context;
     std::unique_ptr<Renderer> renderer;
-    if (stages & (kRegions | kProject) || (stages & kPrune && (!args.images.empty() || args.max_psnr_drop))) {
+    if (stages & (kRegions | kProject) || (stages & kPrune && (!args.images.empty() || args.max_psnr_drop || args.recover))) {
         context = std::make_unique<gpu::Context>(args.gpu.context_options());
         renderer = std::make_unique<Renderer>(*context);
     }
@@ -123,12 +146,34 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     if (stages & kBuild) timed("build", [&] { jobs::build_stage(cloud, options, io); });
     if (stages & kScore) timed("score", [&] { jobs::score_stage(cloud, cameras, options, io); });
     if (stages & kPrune) {
-        const auto views = args.test_views.empty() ? jobs::default_test_views(cameras.size())
+        const auto views = args.test_views.empty() ? jobs::default_test_views(cameras)
                                                    : jobs::parse_view_list(args.test_views, cameras.size());
         std::vector<Camera> test;
         for (size_t v : views) test.push_back(cameras[v]);
+        if (args.recover && args.images.empty()) throw InputError("--recover", "needs the photos: give --images");
+        std::string region;
+        const jobs::SubjectMasks masks =
+            args.images.empty() ? jobs::SubjectMasks{}
+                                : jobs::subject_masks(jobs::parse_subject_spec(args.subject, args.subject_masks), cameras, &region);
         jobs::ClusterPruneResult result;
         timed("prune", [&] {
+            if (args.recover) {
+                jobs::RecoverOptions recover;
+                recover.iterations = *args.recover;
+                recover.finetune.train.background = options.settings.background;
+                ProgressLine line("re-fit iterations");
+                const auto done = jobs::recover_stage(
+                    *context, *renderer, cloud, cameras, options,
+                    jobs::photos_in_folder(args.images, options.settings.background), recover,
+                    args.recover_loss == "subject" ? masks : jobs::SubjectMasks{}, args.out, io,
+                    [&](const jobs::FinetuneStatus& s) { line.update(s.iteration, s.iterations); });
+                result = done.prune;
+                const auto& refit = done.recover.rounds.back().refit;
+                std::printf("re-fitted %llu iterations in %.1f s (%s loss, %zu views)\n",
+                            static_cast<unsigned long long>(refit.iterations), refit.seconds,
+                            done.masked_views ? "subject-masked" : "whole-picture", refit.train_views.size());
+                return;
+            }
             if (!args.max_psnr_drop) {
                 result = jobs::prune_stage(cloud, options, args.out, io);
                 return;
@@ -159,8 +204,11 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                         result.budget->kept, result.budget->drop, result.budget->probes.size());
         if (!args.images.empty()) {
             const GaussianCloud pruned = io::read_ply(args.out);
-            const auto q = jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings);
-            std::printf("test views (%zu), subject region %.1f%% of the pixels:\n", test.size(), 100 * q.subject_fraction);
+            const auto q = jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings, masks);
+            std::printf("test views (%zu), subject region (%s) %.1f%% of the pixels", test.size(), region.c_str(),
+                        100 * q.subject_fraction);
+            if (q.views_without_subject) std::printf(", none in %zu views", q.views_without_subject);
+            std::printf(":\n");
             print_scores("unpruned vs photos", *q.unpruned_vs_photos);
             print_scores("pruned vs photos", *q.pruned_vs_photos);
             print_scores("pruned vs unpruned", q.pruned_vs_unpruned);
@@ -197,9 +245,10 @@ void register_cluster(CLI::App& app, Action& action) {
         "(neighbours + union-find) -> score (G* per cluster) -> prune (write the scene). Each reads the\n"
         "outputs the earlier ones left in --work, so a stage can be re-run with new parameters alone.\n"
         "G* = -alpha*spatial - beta*depth + gamma*MVR + kappa*contribution (the largest share of the picture a\n"
-        "member paints). Defaults: contribution alone; drop the lowest clusters until half the Gaussians are gone\n"
+        "member paints) + lambda*[central] (the views look at it: centrality >= --central-threshold).\n"
+        "Defaults: contribution and central (kappa 1, lambda 1); drop the lowest clusters until half the Gaussians are gone\n"
         "or the dropped ones would paint more than --max-contribution-loss of the picture. The issue's method:\n"
-        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
+        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --lambda 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,

@@ -49,6 +49,13 @@ void add_score(CLI::App& c, ClusterStageArgs& a) {
     c.add_option("--kappa", w.kappa,
                  "weight of the contribution (largest share of the picture a member paints) in G* (the issue's: 0)")
         ->capture_default_str();
+    c.add_option("--lambda", w.lambda,
+                 "weight in G* of being central: how much the views look at the cluster reaches --central-threshold")
+        ->capture_default_str();
+    c.add_option("--central-threshold", w.central_threshold,
+                 "centrality (mean over views of 1 - rho^2 at the projected centre) from which a cluster is central")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
 }
 
 }  // namespace

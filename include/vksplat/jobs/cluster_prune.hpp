@@ -30,7 +30,7 @@
 namespace vksplat::jobs {
 
 struct ClusterOptions {
-    // Stage 1. Views: empty means the training views (all but INRIA's 13 test views), thinned
+    // Stage 1. Views: empty means the training views (all but default_test_views), thinned
     // evenly to at most max_views.
     std::vector<size_t> views;
     size_t max_views = 50;
@@ -65,7 +65,7 @@ struct ClusterOptions {
 using Log = std::function<void(const std::string&)>;
 
 // Camera indices stage 1 renders.
-std::vector<size_t> region_views(size_t camera_count, const ClusterOptions& options);
+std::vector<size_t> region_views(const std::vector<Camera>& cameras, const ClusterOptions& options);
 
 struct RegionView {
     size_t view = 0;                // camera index
@@ -112,7 +112,7 @@ cluster::Clustering cluster_gaussians(const GaussianCloud& cloud, const cluster:
                                       const ClusterOptions& options, const Log& log);
 
 // Prints the percentile table of the three normalised components.
-void log_score_table(const cluster::ClusterScores& scores, const Log& log);
+void log_score_table(const cluster::ClusterScores& scores, const cluster::ScoreWeights& weights, const Log& log);
 
 // Stages 1-6 in memory: per Gaussian, the G* of its cluster (the ranking cluster pruning keeps
 // by), indexed like `cloud`; Gaussians that sanitising would drop get -infinity. Compute once and

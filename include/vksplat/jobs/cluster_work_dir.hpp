@@ -7,14 +7,17 @@
 //   projection_views.npy   int32 [V]: the camera index of each row of projection.npy
 //   contribution.npy       float32 [N]: per Gaussian, its mean share of the kept views' pixels
 //   clusters.npy           int32 [N]: cluster id per Gaussian
-//   cluster_scores.npy     float32 [C, 8]: spatial_raw, depth_raw, spatial, depth, MVR, G*,
-//                          contribution_raw (sum over members), contribution (normalised) per cluster
+//   cluster_scores.npy     float32 [C, 9]: spatial_raw, depth_raw, spatial, depth, MVR, G*,
+//                          contribution_raw (sum over members), contribution (normalised), centrality
+//                          per cluster
 // Every stage takes the scene sanitised (sanitize()), so that all files index the same Gaussians.
 #include <filesystem>
 #include <optional>
 
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/cluster_prune.hpp"
+#include "vksplat/jobs/prune_recover.hpp"
+#include "vksplat/jobs/subject_quality.hpp"
 #include "vksplat/prune/quality_budget.hpp"
 
 namespace vksplat::jobs {
@@ -60,5 +63,21 @@ ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud
                                          const RenderSettings& settings, const std::filesystem::path& out,
                                          const ClusterStageIo& io,
                                          const std::function<void(const prune::BudgetProbe&)>& on_probe = {});
+
+struct ClusterRecoverResult {
+    ClusterPruneResult prune;     // counts and bytes of the re-fitted scene
+    RecoverResult recover;        // the re-fit (one round: see recover_stage)
+    size_t masked_views = 0;      // training views whose loss looked at the subject only
+};
+// Stage 7, then a re-fit of what it kept to the photos (jobs::prune_and_recover) in one round:
+// later rounds would rank by blend significance over whole pictures, which keeps the background
+// that cluster pruning just dropped. With `subject`, each training view's loss looks only at its
+// subject region (from the unpruned scene's render of it), so the re-fit spends nothing on
+// pixels that lost their background on purpose. Writes the re-fitted scene to `out`.
+ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
+                                   const std::vector<Camera>& cameras, const ClusterOptions& options,
+                                   const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
+                                   const std::filesystem::path& out, const ClusterStageIo& io,
+                                   const std::function<void(const FinetuneStatus&)>& progress = {});
 
 }  // namespace vksplat::jobs

@@ -32,8 +32,13 @@ PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std:
                              bool resize = false);
 
 // The photo of `camera` for training, read through `photos`: refused (InputError naming the camera)
-// when its size is not the camera's.
-train::Photo training_photo(const PhotoSource& photos, const Camera& camera);
+// when its size is not the camera's. A non-empty `loss_mask` (one byte per pixel, 0: the pixel
+// neither counts nor pulls) must be the camera's size too.
+train::Photo training_photo(const PhotoSource& photos, const Camera& camera, const std::vector<uint8_t>& loss_mask = {});
+
+// Which pixels of a training view the loss looks at (train::Photo's mask): one byte per pixel of
+// the view's camera, 0 where the pixel is left out.
+using LossMasks = std::function<std::vector<uint8_t>(size_t view)>;
 
 // The quality of a scene on the held-out views (prune::measure_quality against the photos, say).
 using QualityProbe = std::function<prune::Quality(const GaussianCloud&)>;
@@ -42,6 +47,7 @@ struct FinetuneOptions {
     uint64_t iterations = 5000;
     std::vector<size_t> train_views;   // indices into the cameras; empty: every camera not a test view
     std::vector<size_t> test_views;    // held out: never stepped on; empty: default_test_views
+    LossMasks loss_masks;              // empty: every pixel counts
     train::TrainOptions train;         // rates (position at its final rate by default), loss, background
     uint64_t seed = 0;                 // the order of the training views
     // Where the checkpoint lives; empty: no checkpoints (and no resume).
