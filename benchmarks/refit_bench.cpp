@@ -7,6 +7,10 @@
 //
 //   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
 //   refit_bench lego.ply ... --drop 0.8 --rounds 2   (blend ranking, 80% dropped, two prune-re-fit rounds)
+//   refit_bench bonsai.spz ... --keep keep85.npy --subject --save refit.ply
+//     (what `vksplat cluster prune --recover N` re-fits: the Gaussians the mask keeps, the loss of each
+//     training view masked to the subject region of the whole scene's render, quality = PSNR inside
+//     the test views' regions)
 #include <CLI/CLI.hpp>
 
 #include <cstdio>
@@ -15,6 +19,7 @@
 #include <optional>
 
 #include "vksplat/eval/metrics.hpp"
+#include "vksplat/eval/subject_region.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/npy.hpp"
@@ -30,7 +35,8 @@ using bench::read_npy_photo;
 
 int main(int argc, char** argv) {
     CLI::App app{"refit_bench: re-fit a scene to its photos on the GPU and report quality, time and memory"};
-    std::string scene_path, cameras_path, photos_dir, device;
+    std::string scene_path, cameras_path, photos_dir, device, keep_path, save;
+    bool subject_only = false, whole_loss = false;
     std::vector<float> background{0, 0, 0};
     uint64_t iterations = 5000;
     std::optional<double> drop;
@@ -46,9 +52,20 @@ int main(int argc, char** argv) {
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
+    app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
+    app.add_flag("--subject", subject_only,
+                 "mask the loss and measure inside the subject region (the automatic ball) of the whole scene");
+    app.add_flag("--whole-picture-loss", whole_loss, "with --subject: measure inside the region, but let the loss see every pixel");
+    app.add_option("--save", save, "write the re-fitted scene here (.ply)");
     CLI11_PARSE(app, argc, argv);
     try {
-        const GaussianCloud cloud = io::read_scene(scene_path);
+        const GaussianCloud whole = io::read_scene(scene_path);
+        GaussianCloud cloud = whole;
+        if (!keep_path.empty()) {
+            const std::vector<uint8_t> keep = io::read_npy(keep_path).values<uint8_t>();
+            if (keep.size() != whole.size()) throw InputError(keep_path, "does not mark every Gaussian of the scene");
+            cloud = whole.subset(keep);
+        }
         const auto cameras = io::read_cameras(cameras_path);
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         jobs::FinetuneOptions options;
@@ -62,13 +79,28 @@ int main(int argc, char** argv) {
         Renderer renderer(context);
         RenderSettings settings;
         settings.background = options.train.background;
+        // With --subject-of: each view's subject mask, from the unpruned scene's render of it.
+        std::map<size_t, std::vector<uint8_t>> subject;
+        if (subject_only) {
+            const eval::SubjectBall ball = eval::auto_subject_ball(cameras);
+            renderer.set_scene(whole);
+            for (size_t v = 0; v < cameras.size(); ++v)
+                subject[v] = eval::subject_mask(renderer.render(cameras[v], settings), cameras[v], ball);
+            if (!whole_loss) options.loss_masks = [&](size_t v) { return subject.at(v); };
+            std::printf("subject: ball at (%.4g, %.4g, %.4g), radius %.4g; loss and quality inside it\n", ball.centre.x,
+                        ball.centre.y, ball.centre.z, ball.radius);
+            std::printf("loss: %s\n", whole_loss ? "every pixel" : "subject pixels only");
+        }
         uint64_t render_bytes = 0;
         const jobs::QualityProbe quality = [&](const GaussianCloud& scene) {
             prune::Quality q;
             renderer.set_scene(scene);
             for (const auto& [v, photo] : test_photos) {
                 const RenderOutput out = renderer.render(cameras[v], settings);
-                q.psnr.push_back(eval::psnr(out.rgb.data(), photo.rgb.data(), out.width, out.height));
+                q.psnr.push_back(subject.empty()
+                                     ? eval::psnr(out.rgb.data(), photo.rgb.data(), out.width, out.height)
+                                     : eval::masked_psnr(out.rgb.data(), photo.rgb.data(), subject.at(v).data(),
+                                                         out.width, out.height));
                 q.mean_psnr += q.psnr.back() / double(test_photos.size());
                 render_bytes = std::max<uint64_t>(render_bytes, renderer.last_frame().device_bytes);
             }
@@ -84,9 +116,13 @@ int main(int argc, char** argv) {
         };
         jobs::FinetuneResult result;
         if (!drop) {
+            if (!keep_path.empty())
+                std::printf("whole scene (%zu Gaussians): test %sPSNR %.3f dB\n", whole.size(),
+                            subject.empty() ? "" : "subject ", quality(whole).mean_psnr);
             result = jobs::finetune_scene(context, cloud, cameras, photos, options, quality, report);
-            std::printf("test PSNR (%zu views): %.3f -> %.3f dB (%+.3f)\n", test.size(), result.before->mean_psnr,
-                        result.after->mean_psnr, result.after->mean_psnr - result.before->mean_psnr);
+            std::printf("test %sPSNR (%zu views): %.3f -> %.3f dB (%+.3f)\n", subject.empty() ? "" : "subject ",
+                        test.size(), result.before->mean_psnr, result.after->mean_psnr,
+                        result.after->mean_psnr - result.before->mean_psnr);
         } else {
             const auto train = jobs::default_train_views(cameras.size(), test);
             const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings);
@@ -112,6 +148,7 @@ int main(int argc, char** argv) {
                         test.size(), unpruned, 100.0 * *drop, pruned, pruned - unpruned, result.after->mean_psnr,
                         result.after->mean_psnr - unpruned);
         }
+        if (!save.empty()) io::write_scene(result.cloud, save, io::WriteMode::overwrite);
         std::printf("iterations %llu (skipped %llu), wall %.2f s = %.3f ms per iteration, GPU median %.3f ms\n",
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                     result.seconds, 1e3 * result.seconds / double(result.iterations), result.gpu_ms_per_iteration);

@@ -134,7 +134,7 @@ expect cluster-quality-budget 0 "quality budget 0.500 dB: kept" -- "$vksplat" cl
   --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --test-views 0-2 -o "$work/budget_clusters.ply"
 expect cluster-budget-or-ratio any-failure "--max-psnr-drop" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --prune-ratio 0.5 -o "$work/bad.ply"
-expect cluster-help-says-the-original 0 "--kappa 0 --lambda 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
+expect cluster-help-says-the-original 0 "--kappa 0 --prune-ratio 0.9 --ratio-of clusters" -- "$vksplat" cluster --help
 expect cluster-bad-ratio-of any-failure "--ratio-of" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --ratio-of splats -o "$work/bad.ply"
 expect cluster-needs-earlier-stage 2 "run \`vksplat cluster project\` first" -- "$vksplat" cluster build \

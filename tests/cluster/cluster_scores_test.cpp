@@ -59,7 +59,7 @@ TEST(ClusterScores, WeightsChangeTheScore) {
     const HandMade m;
     const ClusterScores s = score_clusters(m.positions, m.cluster_of, m.labels, m.cameras,
                                            {.alpha = 1.0, .beta = 0.0, .gamma = 0.0, .mvr_mean_frac_weight = 1.0,
-                                            .kappa = 0.0, .lambda = 0.0});
+                                            .kappa = 0.0});
     EXPECT_NEAR(s.score[1], -1.0, 1e-12);
     EXPECT_NEAR(s.mvr[0], 0.75, 1e-12);  // mean visible fraction alone
 }
@@ -106,11 +106,13 @@ TEST(ClusterScores, ContributionKeepsAPaintingSingletonAndDropsHiddenAndOffScree
     // Every cluster but the off-screen pair lies well inside both pictures: central.
     EXPECT_EQ(s.centrality[2], 0.0);
     for (size_t c : {0, 1, 3}) EXPECT_GT(s.centrality[c], 0.8) << c;
+    for (size_t c = 0; c < 4; ++c) EXPECT_EQ(s.score[c], s.contribution[c]) << "the default G* is contribution alone";
+    const ClusterScores central = score_clusters(m.positions, m.cluster_of, m.labels, m.cameras, {.lambda = 1.0},
+                                                 m.contribution);
     for (size_t c = 0; c < 4; ++c)
-        EXPECT_EQ(s.score[c], s.contribution[c] + (c == 2 ? 0.0 : 1.0)) << "the default G*: contribution, +1 if central";
+        EXPECT_EQ(central.score[c], s.contribution[c] + (c == 2 ? 0.0 : 1.0)) << "lambda 1: +1 where central";
     const ClusterScores both = score_clusters(m.positions, m.cluster_of, m.labels, m.cameras,
-                                              {.alpha = 0.1, .beta = 0.1, .gamma = 1.0, .kappa = 2.0, .lambda = 0.0},
-                                              m.contribution);
+                                              {.alpha = 0.1, .beta = 0.1, .gamma = 1.0, .kappa = 2.0}, m.contribution);
     for (size_t c = 0; c < 4; ++c)
         EXPECT_NEAR(both.score[c], -0.1 * both.spatial[c] - 0.1 * both.depth[c] + both.mvr[c] + 2 * both.contribution[c],
                     1e-12);

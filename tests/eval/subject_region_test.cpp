@@ -3,24 +3,15 @@
 
 #include <cmath>
 
+#include "support/scenes.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/subject_region.hpp"
 
 namespace vksplat::eval {
 namespace {
 
-std::vector<Camera> ring(glm::dvec3 target, double distance) {
-    std::vector<Camera> cameras;
-    for (int i = 0; i < 9; ++i) {
-        const double a = 2.0 * M_PI * i / 9;
-        cameras.push_back(Camera::look_at(target + distance * glm::dvec3(std::sin(a), 0.1 * std::cos(2 * a), std::cos(a)),
-                                          target, {0, -1, 0}, 40, 30, 20.0, 20.0));
-    }
-    return cameras;
-}
-
 TEST(SubjectRegion, TheAutomaticBallIsAroundTheCommonFocus) {
-    const SubjectBall ball = auto_subject_ball(ring({1, 2, 3}, 5.0));
+    const SubjectBall ball = auto_subject_ball(test::camera_ring(9, {1, 2, 3}, 5.0));
     EXPECT_NEAR(glm::length(ball.centre - glm::dvec3(1, 2, 3)), 0.0, 1e-9);
     EXPECT_NEAR(ball.radius, 0.3 * 5.0, 0.02);  // the cameras' heights vary a little
     std::vector<Camera> forward;

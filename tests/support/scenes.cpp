@@ -7,6 +7,17 @@
 
 namespace vksplat::test {
 
+std::vector<Camera> camera_ring(int count, glm::dvec3 target, double radius) {
+    std::vector<Camera> cameras;
+    for (int i = 0; i < count; ++i) {
+        const double angle = 2.0 * M_PI * i / count;
+        const glm::dvec3 eye =
+            target + radius * glm::dvec3(std::sin(angle), 0.125 * std::cos(3.0 * angle), std::cos(angle));
+        cameras.push_back(Camera::look_at(eye, target, {0, -1, 0}, 64, 48, 60.0, 50.0));
+    }
+    return cameras;
+}
+
 Camera forward_camera(int width, int height, double focal) {
     Camera camera;
     camera.name = "forward";

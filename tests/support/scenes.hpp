@@ -13,6 +13,10 @@ namespace vksplat::test {
 // A camera at the origin looking down +z (identity world->camera), principal point centred.
 Camera forward_camera(int width, int height, double focal);
 
+// `count` 64x48 cameras on a circle of `radius` around `target`, looking at it, their heights
+// wavering by radius / 8 so that the ring is not flat.
+std::vector<Camera> camera_ring(int count, glm::dvec3 target, double radius);
+
 // One Gaussian in activated terms, so a test states what it renders rather than logits and SH.
 struct Splat {
     glm::dvec3 position{0.0};

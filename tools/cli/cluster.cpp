@@ -246,9 +246,10 @@ void register_cluster(CLI::App& app, Action& action) {
         "outputs the earlier ones left in --work, so a stage can be re-run with new parameters alone.\n"
         "G* = -alpha*spatial - beta*depth + gamma*MVR + kappa*contribution (the largest share of the picture a\n"
         "member paints) + lambda*[central] (the views look at it: centrality >= --central-threshold).\n"
-        "Defaults: contribution and central (kappa 1, lambda 1); drop the lowest clusters until half the Gaussians are gone\n"
+        "Defaults: contribution alone (kappa 1); drop the lowest clusters until half the Gaussians are gone\n"
         "or the dropped ones would paint more than --max-contribution-loss of the picture. The issue's method:\n"
-        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --lambda 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
+        "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
+        "To keep the subject and drop the room: --lambda 1 --prune-ratio 0.8 --max-contribution-loss 1.\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,

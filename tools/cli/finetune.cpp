@@ -123,7 +123,7 @@ void register_finetune(CLI::App& app, Action& action) {
     command->add_option("--iters", args->iterations, "iterations in all (a resumed run counts the earlier ones)")
         ->check(CLI::PositiveNumber);
     command->add_option("--test-views", args->test_views,
-                        "held-out views, e.g. 0-12 (default: the first 13 if there are more, else all)");
+                        "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to train on (default: all but the test views)");
     command->add_option("--background", args->background, "background colour R,G,B in [0,1] (also under photo alpha)")
         ->delimiter(',')

@@ -175,7 +175,7 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--images", args->images, "photos to measure quality against (else the unpruned render)")
         ->check(CLI::ExistingDirectory);
     command->add_option("--test-views", args->test_views,
-                        "held-out views, e.g. 0-12 (default: the first 13 if there are more, else all)");
+                        "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to score on (default: all but the test views)");
     command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
         ->delimiter(',')

@@ -140,7 +140,7 @@ void register_sweep(CLI::App& app, Action& action) {
         ->delimiter(',')
         ->check(CLI::Range(0.0, 1.0));
     command->add_option("--test-views", args->test_views,
-                        "held-out views, e.g. 0-12 (default: the first 13 if there are more, else all)");
+                        "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to score on (default: all but the test views)");
     command->add_option("--max-train-views", args->max_train_views,
                         "score on at most N training views, evenly spaced (default: all)");
