@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "vksplat/error.hpp"
+#include "vksplat/eval/comparison_sheet.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/image.hpp"
@@ -52,6 +53,31 @@ struct ScoreSums {
     }
 };
 
+// The unpruned render with everything outside the subject region dimmed to a quarter.
+std::vector<float> region_panel(const std::vector<float>& rgb, const std::vector<uint8_t>& mask) {
+    std::vector<float> out = rgb;
+    for (size_t p = 0; p < mask.size(); ++p)
+        if (!mask[p])
+            for (int c = 0; c < 3; ++c) out[3 * p + c] *= 0.25f;
+    return out;
+}
+
+void write_sheet(const SubjectSheets& sheets, const Camera& camera, const RenderOutput& unpruned,
+                 const RenderOutput& pruned, const std::vector<uint8_t>& mask, const std::vector<float>* photo) {
+    const int w = pruned.width, h = pruned.height;
+    std::vector<eval::SheetPanel> panels;
+    if (photo) panels.push_back({"photo", w, h, *photo});
+    panels.push_back({"unpruned", w, h, unpruned.rgb});
+    panels.push_back({"pruned", w, h, pruned.rgb});
+    panels.push_back({"subject region", w, h, region_panel(unpruned.rgb, mask)});
+    const std::vector<float>& target = photo ? *photo : unpruned.rgb;
+    panels.push_back(eval::heat_map_panel(pruned.rgb.data(), target.data(), w, h, sheets.max_error,
+                                          photo ? "pruned vs photo" : "pruned vs unpruned"));
+    std::filesystem::create_directories(sheets.dir);
+    eval::write_comparison_sheet(sheets.dir / (std::filesystem::path(camera.name).stem().string() + "_subject.png"),
+                                 panels, sheets.mode);
+}
+
 }  // namespace
 
 SubjectSpec parse_subject_spec(const std::string& subject, const std::string& masks_dir) {
@@ -83,7 +109,8 @@ SubjectMasks subject_masks(const SubjectSpec& spec, const std::vector<Camera>& c
 SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& unpruned, const GaussianCloud& pruned,
                                        const std::vector<Camera>& test_cameras,
                                        const std::optional<std::filesystem::path>& images_dir,
-                                       const RenderSettings& settings, const SubjectMasks& masks) {
+                                       const RenderSettings& settings, const SubjectMasks& masks,
+                                       const std::optional<SubjectSheets>& sheets) {
     if (test_cameras.empty()) throw InputError("subject quality", "no test views");
     std::vector<RenderOutput> references;
     std::vector<std::vector<uint8_t>> regions;
@@ -114,6 +141,7 @@ SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& 
         q.subject_fraction += double(inside) / double(mask.size());
         q.views_without_subject += inside == 0;
         against_unpruned.add(image.rgb, reference.rgb, mask, image.width, image.height);
+        if (sheets) write_sheet(*sheets, test_cameras[v], reference, image, mask, photos.empty() ? nullptr : &photos[v]);
         if (photos.empty()) continue;
         before.add(reference.rgb, photos[v], mask, image.width, image.height);
         after.add(image.rgb, photos[v], mask, image.width, image.height);

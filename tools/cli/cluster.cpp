@@ -24,7 +24,7 @@ namespace {
 struct ClusterArgs {
     GpuOptions gpu;
     std::string scene, cameras, work, out, import_dir, images, test_views;
-    std::string subject = "auto", subject_masks;
+    std::string subject = "auto", subject_masks, sheets;
     std::string ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
@@ -76,6 +76,9 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
                  "instead: a folder of subject mask images named like the photos (white = subject)")
         ->check(CLI::ExistingDirectory)
         ->excludes(subject);
+    c.add_option("--sheets", a.sheets,
+                 "with --images: a comparison sheet per test view here (photo | unpruned | pruned | subject region | "
+                 "error heat map)");
     auto* recover = c.add_option("--recover", a.recover,
                                  "then re-fit what is kept for N iterations on the training views' photos (--images), "
                                  "in one round")
@@ -204,7 +207,10 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                         result.budget->kept, result.budget->drop, result.budget->probes.size());
         if (!args.images.empty()) {
             const GaussianCloud pruned = io::read_ply(args.out);
-            const auto q = jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings, masks);
+            std::optional<jobs::SubjectSheets> sheets;
+            if (!args.sheets.empty()) sheets = jobs::SubjectSheets{.dir = args.sheets, .mode = io.mode};
+            const auto q =
+                jobs::measure_subject_quality(*renderer, cloud, pruned, test, args.images, options.settings, masks, sheets);
             std::printf("test views (%zu), subject region (%s) %.1f%% of the pixels", test.size(), region.c_str(),
                         100 * q.subject_fraction);
             if (q.views_without_subject) std::printf(", none in %zu views", q.views_without_subject);

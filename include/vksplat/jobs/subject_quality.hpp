@@ -11,6 +11,7 @@
 
 #include "vksplat/camera.hpp"
 #include "vksplat/eval/subject_region.hpp"
+#include "vksplat/io/write_mode.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::jobs {
@@ -44,10 +45,20 @@ struct SubjectQuality {
     size_t views_without_subject = 0;                 // test views whose region is empty
 };
 
+// Where comparison sheets go: one PNG per test view, <camera name stem>_subject.png, of photo |
+// unpruned | pruned | the subject region (the unpruned render, dimmed outside it) | the pruned
+// render's error against the photo (else the unpruned render), max_error at the top of the ramp.
+struct SubjectSheets {
+    std::filesystem::path dir;
+    float max_error = 0.25f;
+    io::WriteMode mode = io::WriteMode::refuse_existing;
+};
+
 // Photos are looked up by camera name in images_dir (io::find_image) when it is given.
 SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& unpruned, const GaussianCloud& pruned,
                                        const std::vector<Camera>& test_cameras,
                                        const std::optional<std::filesystem::path>& images_dir,
-                                       const RenderSettings& settings, const SubjectMasks& masks);
+                                       const RenderSettings& settings, const SubjectMasks& masks,
+                                       const std::optional<SubjectSheets>& sheets = {});
 
 }  // namespace vksplat::jobs
