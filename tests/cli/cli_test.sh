@@ -152,7 +152,10 @@ JSON
 expect ring-photos 0 "wrote 4 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/ring.json" \
   --out "$work/ring_photos"
 expect cluster-subject 0 "subject region (automatic ball at" -- "$vksplat" cluster run "$work/demo/demo.ply" \
-  --cameras "$work/ring.json" --work "$work/ring_work" --seg-k 150 --images "$work/ring_photos" -o "$work/ring.ply"
+  --cameras "$work/ring.json" --work "$work/ring_work" --seg-k 150 --images "$work/ring_photos" -o "$work/ring.ply" \
+  --sheets "$work/ring_sheets"
+[ -f "$work/ring_sheets/r2_subject.png" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: cluster --sheets wrote no r2_subject.png"; }
 expect cluster-recover 0 "re-fitted 10 iterations" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/ring.json" --work "$work/ring_work" --images "$work/ring_photos" --recover 10 -o "$work/ring_refit.ply"
 expect cluster-recover-needs-photos 2 "--recover: needs the photos" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
