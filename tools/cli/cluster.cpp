@@ -78,7 +78,8 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
         ->excludes(subject);
     c.add_option("--sheets", a.sheets,
                  "with --images: a comparison sheet per test view here (photo | unpruned | pruned | subject region | "
-                 "error heat map)");
+                 "error heat map)")
+        ->needs(c.get_option("--images"));
     auto* recover = c.add_option("--recover", a.recover,
                                  "then re-fit what is kept for N iterations on the training views' photos (--images), "
                                  "in one round")
