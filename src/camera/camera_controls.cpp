@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "vksplat/error.hpp"
+#include "stats/median.hpp"
 
 namespace vksplat {
 namespace {
@@ -13,13 +14,6 @@ constexpr double kPi = 3.14159265358979323846;
 constexpr double kMaxPitch = (90.0 - 1.0) * kPi / 180.0;
 constexpr double kRadiansPerPixel = 0.005;
 constexpr double kZoomStep = 0.1;
-
-double median(std::vector<double> values) {
-    if (values.empty()) return 0;
-    const auto middle = values.begin() + long(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
 
 }  // namespace
 
@@ -45,7 +39,7 @@ CameraControls CameraControls::framing(const GaussianCloud& cloud, const glm::dv
         std::vector<double> axis(cloud.size());
         for (int a = 0; a < 3; ++a) {
             for (size_t i = 0; i < cloud.size(); ++i) axis[i] = cloud.positions[3 * i + a];
-            centre[a] = median(axis);
+            centre[a] = stats::median(axis);
         }
         std::vector<double> spread(cloud.size());
         for (size_t i = 0; i < cloud.size(); ++i)

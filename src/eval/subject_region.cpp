@@ -1,12 +1,12 @@
 // The subject ball and its per-view pixel mask (see subject_region.hpp).
 #include "vksplat/eval/subject_region.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <sstream>
 
 #include "vksplat/camera_focus.hpp"
 #include "vksplat/error.hpp"
+#include "stats/median.hpp"
 
 namespace vksplat::eval {
 
@@ -17,8 +17,7 @@ SubjectBall auto_subject_ball(const std::vector<Camera>& cameras) {
                                            "subject as --subject x,y,z,r or --subject-masks DIR");
     std::vector<double> distances;
     for (const Camera& camera : cameras) distances.push_back(glm::length(camera.centre() - *focus));
-    std::nth_element(distances.begin(), distances.begin() + distances.size() / 2, distances.end());
-    return {*focus, 0.3 * distances[distances.size() / 2]};
+    return {*focus, 0.3 * stats::median(std::move(distances))};
 }
 
 SubjectBall parse_subject_ball(const std::string& text) {

@@ -322,9 +322,7 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
     std::map<size_t, std::vector<uint8_t>> masks;
     if (subject) {
         FinetuneOptions& finetune = recover.finetune;
-        const auto test = finetune.test_views.empty() ? default_test_views(cameras) : finetune.test_views;
-        if (finetune.train_views.empty()) finetune.train_views = default_train_views(cameras.size(), test);
-        check_view_indices(finetune.train_views, cameras.size());
+        finetune.train_views = split_views(cameras, finetune.test_views, finetune.train_views).train;
         RenderSettings settings;
         settings.background = finetune.train.background;
         renderer.set_scene(cloud);

@@ -11,6 +11,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/scene_extent.hpp"
+#include "stats/median.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -20,22 +21,20 @@ using Clock = std::chrono::steady_clock;
 // Progress is reported at most this often (and at the last step).
 constexpr double kReportSeconds = 0.5;
 
-double median(std::vector<double> values) {
-    if (values.empty()) return 0;
-    const auto middle = values.begin() + values.size() / 2;
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
-
 }  // namespace
 
-train::Photo training_photo(const PhotoSource& photos, const Camera& camera, const std::vector<uint8_t>& loss_mask) {
-    const io::ImageRGB image = photos(camera);
+io::ImageRGB checked_photo(const PhotoSource& photos, const Camera& camera) {
+    io::ImageRGB image = photos(camera);
     if (image.width != camera.width || image.height != camera.height)
         throw InputError("photo of camera '" + camera.name + "'",
                          "is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                              " but the camera is " + std::to_string(camera.width) + "x" +
                              std::to_string(camera.height));
+    return image;
+}
+
+train::Photo training_photo(const PhotoSource& photos, const Camera& camera, const std::vector<uint8_t>& loss_mask) {
+    const io::ImageRGB image = checked_photo(photos, camera);
     if (loss_mask.empty()) return train::Photo::from_image(image);
     if (loss_mask.size() != size_t(camera.width) * size_t(camera.height))
         throw InputError("loss mask of camera '" + camera.name + "'", "is not the camera's size");
@@ -47,11 +46,9 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
                               const FinetuneOptions& options, const QualityProbe& quality,
                               const std::function<void(const FinetuneStatus&)>& progress) {
     FinetuneResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
-    result.train_views =
-        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
-    check_view_indices(result.test_views, cameras.size());
-    check_view_indices(result.train_views, cameras.size());
+    ViewSplit split = split_views(cameras, options.test_views, options.train_views);
+    result.test_views = std::move(split.test);
+    result.train_views = std::move(split.train);
     if (result.train_views.empty()) throw InputError("finetune", "no training views");
     if (options.resume && (options.checkpoint.empty() || !std::filesystem::exists(options.checkpoint)))
         throw InputError(options.checkpoint.empty() ? std::string("--resume") : options.checkpoint.string(),
@@ -130,8 +127,8 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     if (result.interrupted && !options.checkpoint.empty()) trainer->save_checkpoint(options.checkpoint);
     result.iterations = trainer->iteration();
     result.skipped = trainer->skipped_steps();
-    result.gpu_ms_per_iteration = median(step_times);
-    for (const auto& [label, times] : stage_times) result.stages.push_back({label, median(times)});
+    result.gpu_ms_per_iteration = stats::median(step_times);
+    for (const auto& [label, times] : stage_times) result.stages.push_back({label, stats::median(times)});
     result.device_bytes = trainer->device_bytes();
     result.cloud = trainer->cloud();
     if (quality && !result.interrupted) result.after = quality(result.cloud);

@@ -28,8 +28,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
                          "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
     FinetuneOptions finetune = options.finetune;
     finetune.iterations = per_round;
-    const auto test = finetune.test_views.empty() ? default_test_views(cameras) : finetune.test_views;
-    const auto train = finetune.train_views.empty() ? default_train_views(cameras.size(), test) : finetune.train_views;
+    const std::vector<size_t> train = split_views(cameras, finetune.test_views, finetune.train_views).train;
     RenderSettings settings;
     settings.background = finetune.train.background;
     settings.max_sh_degree = finetune.train.sh_degree;

@@ -144,11 +144,9 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
                         const PruneOptions& options, const PruneProgress& progress) {
     check_options(options);
     PruneResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
-    result.train_views =
-        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views;
-    check_view_indices(result.test_views, cameras.size());
-    check_view_indices(result.train_views, cameras.size());
+    ViewSplit split = split_views(cameras, options.test_views, options.train_views);
+    result.test_views = std::move(split.test);
+    result.train_views = std::move(split.train);
 
     // Sanitised once here, so that scores, masks and the output all index the same Gaussians.
     GaussianCloud cloud = input;

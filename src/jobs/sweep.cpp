@@ -238,10 +238,9 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     const std::vector<double> fractions = options.fractions.empty() ? default_sweep_fractions() : options.fractions;
 
     SweepResult result;
-    result.test_views = options.test_views.empty() ? default_test_views(cameras) : options.test_views;
-    result.train_views = spread_views(
-        options.train_views.empty() ? default_train_views(cameras.size(), result.test_views) : options.train_views,
-        options.max_train_views);
+    ViewSplit split = split_views(cameras, options.test_views, options.train_views);
+    result.test_views = std::move(split.test);
+    result.train_views = spread_views(split.train, options.max_train_views);
     std::vector<Camera> test_cameras;
     std::vector<std::string> stems;
     for (size_t view : result.test_views) {

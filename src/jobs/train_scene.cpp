@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
+#include <map>
 
 #include <nlohmann/json.hpp>
 
@@ -16,6 +16,7 @@
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/initialize.hpp"
 #include "vksplat/train/scene_extent.hpp"
+#include "stats/median.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -53,9 +54,8 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
         std::vector<double> seen;
         for (const auto& c : cameras)
             seen.push_back(glm::length(c.centre() - *focus) * 0.5 * c.width / c.fx);
-        std::nth_element(seen.begin(), seen.begin() + long(seen.size() / 2), seen.end());
         centre = *focus;
-        half = seen[seen.size() / 2];
+        half = stats::median(std::move(seen));
     } else {
         for (const auto& c : cameras) centre += c.centre();
         centre /= double(cameras.size());
@@ -162,18 +162,18 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     fs::create_directories(options.out_dir);
 
     // Photos first: a missing or mis-sized one is reported before any step.
-    std::vector<train::Photo> train_photos;
+    std::map<size_t, train::Photo> train_photos;
     uint64_t largest_image = 0;
     for (size_t view : data.train_views) {
         const Camera& camera = data.cameras[view];
-        train_photos.push_back(training_photo(photos, camera));
+        train_photos.emplace(view, training_photo(photos, camera));
         largest_image = std::max<uint64_t>(largest_image, uint64_t(camera.width) * camera.height);
     }
     prune::TestViews test;
     test.photos = true;
     for (size_t view : data.test_views) {
         test.cameras.push_back(data.cameras[view]);
-        test.targets.push_back(photos(data.cameras[view]).rgb);
+        test.targets.push_back(checked_photo(photos, data.cameras[view]).rgb);
     }
 
     // The memory budget caps growth; a start beyond it is refused.
@@ -215,9 +215,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         const uint64_t iteration = trainer->iteration() + 1;
         trainer->set_sh_degree(int(std::min<uint64_t>(uint64_t(recipe.sh_degree), iteration / recipe.sh_degree_interval)));
         const size_t view = training_view(iteration - 1, options.seed, data.train_views);
-        const size_t index = size_t(std::find(data.train_views.begin(), data.train_views.end(), view) -
-                                    data.train_views.begin());
-        const train::StepResult step = trainer->step(data.cameras[view], train_photos[index]);
+        const train::StepResult step = trainer->step(data.cameras[view], train_photos.at(view));
         step_times.push_back(step.gpu_milliseconds);
         result.peak_device_bytes = std::max(result.peak_device_bytes, trainer->device_bytes());
         loss_sum += step.loss;
@@ -258,10 +256,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     result.iterations = trainer->iteration();
     result.skipped = trainer->skipped_steps();
     result.gaussians = trainer->size();
-    if (!step_times.empty()) {
-        std::nth_element(step_times.begin(), step_times.begin() + long(step_times.size() / 2), step_times.end());
-        result.gpu_ms_per_iteration = step_times[step_times.size() / 2];
-    }
+    result.gpu_ms_per_iteration = stats::median(std::move(step_times));
     trainer->save_checkpoint(checkpoint);
     if (result.interrupted) return result;
     const GaussianCloud trained = trainer->cloud();

@@ -86,4 +86,14 @@ void check_view_indices(const std::vector<size_t>& views, size_t camera_count) {
             throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
 }
 
+ViewSplit split_views(const std::vector<Camera>& cameras, const std::vector<size_t>& test,
+                      const std::vector<size_t>& train) {
+    ViewSplit split;
+    split.test = test.empty() ? default_test_views(cameras) : test;
+    split.train = train.empty() ? default_train_views(cameras.size(), split.test) : train;
+    check_view_indices(split.test, cameras.size());
+    check_view_indices(split.train, cameras.size());
+    return split;
+}
+
 }  // namespace vksplat::jobs

@@ -16,7 +16,6 @@ constexpr int kNeighbours = 3;            // distCUDA2's k
 constexpr float kMinSquaredDistance = 1e-7f;  // its clamp: duplicate points still get a size
 constexpr float kInitialOpacity = 0.1f;
 
-
 }  // namespace
 
 GaussianCloud initial_cloud(const io::SfmPoints& points, int sh_degree) {

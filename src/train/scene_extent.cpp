@@ -3,18 +3,13 @@
 #include <algorithm>
 
 #include "vksplat/error.hpp"
+#include "stats/median.hpp"
 
 namespace vksplat::train {
 namespace {
 
 constexpr double kOutlierFactor = 10.0;  // distances beyond this many medians are not trusted
 constexpr double kExtentMargin = 1.1;    // the reference's getNerfppNorm
-
-double median(std::vector<double> values) {
-    const auto middle = values.begin() + values.size() / 2;
-    std::nth_element(values.begin(), middle, values.end());
-    return *middle;
-}
 
 }  // namespace
 
@@ -28,11 +23,11 @@ SceneExtent scene_extent(const std::vector<Camera>& cameras) {
     for (int k = 0; k < 3; ++k) {
         std::vector<double> values;
         for (const auto& c : centres) values.push_back(c[k]);
-        middle[k] = median(values);
+        middle[k] = stats::median(values);
     }
     std::vector<double> distances;
     for (const auto& c : centres) distances.push_back(glm::length(c - middle));
-    const double typical = median(distances);
+    const double typical = stats::median(distances);
 
     SceneExtent extent;
     std::vector<glm::dvec3> trusted;

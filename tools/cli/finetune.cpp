@@ -53,8 +53,9 @@ int run_finetune(const FinetuneArgs& args) {
     options.checkpoint_every = args.checkpoint_every;
     options.resume = args.resume;
     options.stop = &stop_on_interrupt();
-    if (options.test_views.empty()) options.test_views = jobs::default_test_views(cameras);
-    if (options.train_views.empty()) options.train_views = jobs::default_train_views(cameras.size(), options.test_views);
+    jobs::ViewSplit split = jobs::split_views(cameras, options.test_views, options.train_views);
+    options.test_views = std::move(split.test);
+    options.train_views = std::move(split.train);
     std::vector<Camera> test_cameras;
     for (size_t v : options.test_views) test_cameras.push_back(cameras[v]);
 

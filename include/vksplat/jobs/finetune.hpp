@@ -31,8 +31,11 @@ using PhotoSource = std::function<io::ImageRGB(const Camera&)>;
 PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background,
                              bool resize = false);
 
-// The photo of `camera` for training, read through `photos`: refused (InputError naming the camera)
-// when its size is not the camera's. A non-empty `loss_mask` (one byte per pixel, 0: the pixel
+// The photo of `camera` read through `photos`: refused (InputError naming the camera) when its
+// size is not the camera's.
+io::ImageRGB checked_photo(const PhotoSource& photos, const Camera& camera);
+
+// checked_photo, packed for training. A non-empty `loss_mask` (one byte per pixel, 0: the pixel
 // neither counts nor pulls) must be the camera's size too.
 train::Photo training_photo(const PhotoSource& photos, const Camera& camera, const std::vector<uint8_t>& loss_mask = {});
 

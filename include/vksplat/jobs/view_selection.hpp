@@ -26,4 +26,13 @@ size_t training_view(uint64_t iteration, uint64_t seed, const std::vector<size_t
 // Throws InputError naming the first index that is not below camera_count.
 void check_view_indices(const std::vector<size_t>& views, size_t camera_count);
 
+// The views a job holds out and the views it learns or scores on: `test` and `train` as given,
+// each where empty by default_test_views and default_train_views. Both are checked against the
+// cameras (check_view_indices).
+struct ViewSplit {
+    std::vector<size_t> test, train;
+};
+ViewSplit split_views(const std::vector<Camera>& cameras, const std::vector<size_t>& test,
+                      const std::vector<size_t>& train);
+
 }  // namespace vksplat::jobs
