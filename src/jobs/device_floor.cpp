@@ -62,6 +62,20 @@ DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions&
             stream.dispatch(copy, push, std::min<uint32_t>((push.count + 255) / 256, 65535));
         });
         rates.copy_bytes_per_ms = 2.0 * double(rates.copy_bytes) / ms;
+
+        // A chain of copies of one 16-byte word, each behind a barrier; the difference between
+        // two chain lengths removes the frame's own begin and end.
+        const BandwidthCopyPush tiny{source.address(), target.address(), 1};
+        const auto chain_ms = [&](int length) {
+            return median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
+                for (int i = 0; i < length; ++i) {
+                    stream.dispatch(copy, tiny, 1);
+                    stream.barrier();
+                }
+            });
+        };
+        constexpr int kShort = 8, kLong = 72;
+        rates.dependent_dispatch_ms = std::max(0.0, chain_ms(kLong) - chain_ms(kShort)) / (kLong - kShort);
     }
     {
         const uint32_t n = rates.sort_pairs;

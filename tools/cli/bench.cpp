@@ -85,8 +85,10 @@ int run_bench(const BenchArgs& args) {
                 args.stats ? ", with the pruning scores' blend statistics" : "");
     if (args.floor) {
         report.rates = jobs::measure_device_rates(context);
-        std::printf("measured: copy %.0f GB/s (read + write), radix sort %.2f G pairs/s (32-bit keys)\n",
-                    report.rates->copy_bytes_per_ms * 1e-6, report.rates->sort_pairs_per_ms * 1e-6);
+        std::printf("measured: copy %.0f GB/s (read + write), radix sort %.2f G pairs/s (32-bit keys), "
+                    "dependent dispatch %.2f us\n",
+                    report.rates->copy_bytes_per_ms * 1e-6, report.rates->sort_pairs_per_ms * 1e-6,
+                    report.rates->dependent_dispatch_ms * 1e3);
     }
     report.views = jobs::benchmark_views(renderer, cameras, views, options, report.device);
     for (const auto& v : report.views.views) print_view(v, report.rates);

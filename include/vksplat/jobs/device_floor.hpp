@@ -15,6 +15,10 @@ struct DeviceRates {
     double sort_pairs_per_ms = 0;
     uint64_t copy_bytes = 0;  // size of the copied buffer
     uint32_t sort_pairs = 0;  // pairs in the timed sort
+    // One dispatch that waits on the previous one through the renderer's barrier, with (almost)
+    // nothing to do, in ms: what each kernel of a frame costs however little it has to do, so a
+    // frame of K kernels in a chain cannot take less than K times this.
+    double dependent_dispatch_ms = 0;
 };
 
 struct RateOptions {
