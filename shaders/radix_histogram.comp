@@ -1,46 +1,51 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// RadixSort per pass, step 1: each workgroup counts the digits of its blocks of keys, writes
-// hist[digit * blocks + block] and adds them to the pass's per-digit totals, from which step 2
-// gives every (digit, block) its first output position. Workgroups walk the blocks in a
-// grid-stride loop.
+// RadixSort, a one-sweep sort, step 1 (once, not per pass): counts the digits of every pass over all keys.
+// A key's digit in a later pass does not depend on the order earlier passes leave, so one read of
+// the keys gives every pass's per-digit totals, from which each pass's scatter takes the first
+// output position of each digit. It also clears its blocks' look-back words for every pass (the
+// scatter reads them after the barrier that follows), so they need no clear of their own.
+// Workgroups walk the blocks in a grid-stride loop.
 #include "buffers.glsl"
+#include "radix_lookback.glsl"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;  // keys per invocation and block
 
-const uint RADIX_MAX = 256;
-
 layout(push_constant) uniform Push {
     Uints keys;
-    Uints hist;
-    Uints control;
-    Uints totals;  // keys per digit in this pass (zeroed before the sort)
-    uint shift;  // first bit of the digit
-    uint bits;   // digit width, 0..8 (0: every key has digit 0)
+    Uints lookback;  // [block][pass][digit]
+    Uints control;   // [3] count, [4] blocks, [16 + pass * 256 + digit] totals
+    uint digits[MAX_PASSES];  // per pass: first bit | bit count << 8
+    uint passes;
 } pc;
 
-shared uint counts[RADIX_MAX];
+const uint TOTALS = 16;
+
+shared uint counts[MAX_PASSES * RADIX_MAX];
 
 void main() {
     const uint count = pc.control.v[3];
     const uint blocks = pc.control.v[4];
     const uint size = gl_WorkGroupSize.x;
-    const uint radix = 1u << pc.bits;
-    const uint mask = radix - 1u;
+    const uint local = gl_LocalInvocationIndex;
+    for (uint i = local; i < MAX_PASSES * RADIX_MAX; i += size) counts[i] = 0;
+    barrier();
     for (uint block = gl_WorkGroupID.x; block < blocks; block += gl_NumWorkGroups.x) {
-        for (uint d = gl_LocalInvocationIndex; d < radix; d += size) counts[d] = 0;
-        barrier();
+        for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
+            pc.lookback.v[lookback_index(block, 0, 0) + i] = LOOKBACK_EMPTY;
         const uint start = block * size * ITEMS;
         for (uint i = 0; i < ITEMS; ++i) {
-            const uint index = start + i * size + gl_LocalInvocationIndex;
-            if (index < count) atomicAdd(counts[(pc.keys.v[index] >> pc.shift) & mask], 1u);
+            const uint index = start + i * size + local;
+            if (index >= count) break;
+            const uint key = pc.keys.v[index];
+            for (uint pass = 0; pass < pc.passes; ++pass) {
+                const uint shift = pc.digits[pass] & 0xffu, bits = pc.digits[pass] >> 8;
+                atomicAdd(counts[pass * RADIX_MAX + ((key >> shift) & ((1u << bits) - 1u))], 1u);
+            }
         }
-        barrier();
-        for (uint d = gl_LocalInvocationIndex; d < radix; d += size) {
-            pc.hist.v[d * blocks + block] = counts[d];
-            if (counts[d] != 0u) atomicAdd(pc.totals.v[d], counts[d]);
-        }
-        barrier();
     }
+    barrier();
+    for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
+        if (counts[i] != 0u) atomicAdd(pc.control.v[TOTALS + i], counts[i]);
 }

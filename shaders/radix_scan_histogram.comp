@@ -1,6 +1,6 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// RadixSort per pass, step 2: turns the per-block digit counts into output positions in one
+// RadixSort, a pass of a large sort, step 2: turns the per-block digit counts into output positions in one
 // dispatch (a general prefix scan would take four, each behind a barrier, and at a few
 // microseconds apiece those dominated sorts of a few hundred thousand keys). Workgroup d owns
 // digit d: its first position is the number of keys with a smaller digit (the histogram kernel

@@ -1,7 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// RadixSort per pass, step 3: each workgroup re-reads its blocks and moves every (key, value) to
-// its stable position. Output position of a key =
+// RadixSort, a pass of a large sort, step 3: each workgroup re-reads its blocks and moves every
+// (key, value) to its stable position (radix_scatter_one_sweep.comp ranks the same way; it takes
+// the first two terms below from totals and look-back instead). Output position of a key =
 //   scanned hist[digit * blocks + block]   (keys of smaller digits, and of its digit in earlier blocks)
 // + its rank among the block's keys of its digit (earlier subgroups' parts, then earlier rows
 //   and lanes of its own part).

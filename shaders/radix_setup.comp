@@ -1,20 +1,28 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
-// RadixSort step 0 (one invocation, once per sort): reads the key count the GPU left at `count`,
-// clamps it to what the buffers hold and writes the block count and the indirect dispatch size
-// of the per-block kernels into the control words (layout in radix_sort.cpp).
+// RadixSort step 0 (one workgroup, once per sort): reads the key count the GPU left at `count`,
+// clamps it to what the buffers hold, writes the block count and the indirect dispatch size of
+// the per-block kernels into the control words (layout in radix_sort.cpp), and clears the
+// per-pass digit totals that the histogram kernel adds to (a kernel instead of a buffer fill so
+// that the clear needs no barrier of its own).
 #include "buffers.glsl"
+#include "radix_lookback.glsl"
 
-layout(local_size_x = 1) in;
+layout(local_size_x = 256) in;
 
 layout(push_constant) uniform Push {
     Uints count;
-    Uints control;  // [0..2] DispatchArgs, [3] count, [4] blocks
+    Uints control;  // [0..2] DispatchArgs, [3] count, [4] blocks, [16..] totals[pass][digit]
     uint capacity;
     uint block;     // keys per block
 } pc;
 
+const uint TOTALS = 16;
+
 void main() {
+    for (uint i = gl_LocalInvocationIndex; i < MAX_PASSES * RADIX_MAX; i += gl_WorkGroupSize.x)
+        pc.control.v[TOTALS + i] = 0;
+    if (gl_LocalInvocationIndex != 0) return;
     const uint count = min(pc.count.v[0], pc.capacity);
     const uint blocks = (count + pc.block - 1) / pc.block;
     pc.control.v[0] = min(blocks, MAX_GROUPS_X);

@@ -1,10 +1,9 @@
 #include "gpu/prefix_scan.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
-#include "shaders/scan_blocks.spv.h"
-#include "shaders/scan_downsweep.spv.h"
-#include "shaders/scan_reduce.spv.h"
+#include "shaders/scan_lookback.spv.h"
 #include "shaders/scan_setup.spv.h"
 
 namespace vksplat::gpu {
@@ -17,28 +16,22 @@ struct SetupPush {
     uint32_t block;
 };
 
-struct ReducePush {
+struct ScanPush {
     VkDeviceAddress input;
-    VkDeviceAddress control;
-};
-
-struct BlocksPush {
+    VkDeviceAddress gather;
+    VkDeviceAddress output;
     VkDeviceAddress control;
     VkDeviceAddress total;
 };
 
-struct DownsweepPush {
-    VkDeviceAddress input;
-    VkDeviceAddress output;
-    VkDeviceAddress control;
-};
-
-// Specialisation constants of the per-block kernels: workgroup size, items per invocation and the
-// most subgroups a workgroup can have (which sizes the shared array of subgroup partials).
-std::vector<uint32_t> block_constants(const Context& context) {
+// Specialisation constants of the scan kernel: workgroup size, items per invocation, the most
+// subgroups a workgroup can have (which sizes the shared array of subgroup partials) and the polls
+// of an unpublished predecessor before a block sums it itself (a predecessor that runs publishes
+// within about one block's load and scan).
+std::vector<uint32_t> scan_constants(const Context& context, uint32_t lookback_spins) {
     const uint32_t min_subgroup = std::max(1u, context.info().min_subgroup_size);
     return {PrefixScan::workgroup_size, PrefixScan::items_per_thread,
-            std::max(1u, PrefixScan::workgroup_size / min_subgroup)};
+            std::max(1u, PrefixScan::workgroup_size / min_subgroup), lookback_spins};
 }
 
 }  // namespace
@@ -50,28 +43,26 @@ uint64_t PrefixScan::Scratch::bytes_for(const Context&, uint32_t max_count) {
 PrefixScan::Scratch::Scratch(const Context& context, uint32_t max_count)
     : capacity_(max_count), buffer_(context, bytes_for(context, max_count), MemoryKind::device, "prefix scan scratch") {}
 
-PrefixScan::PrefixScan(const Context& context) {
-    const auto constants = block_constants(context);
+PrefixScan::PrefixScan(const Context& context, uint32_t lookback_spins) {
     setup_ = std::make_unique<ComputePipeline>(context, scan_setup_spv, sizeof(SetupPush), std::vector<uint32_t>{},
                                                "scan_setup");
-    reduce_ = std::make_unique<ComputePipeline>(context, scan_reduce_spv, sizeof(ReducePush), constants, "scan_reduce");
-    blocks_ = std::make_unique<ComputePipeline>(context, scan_blocks_spv, sizeof(BlocksPush), constants, "scan_blocks");
-    downsweep_ = std::make_unique<ComputePipeline>(context, scan_downsweep_spv, sizeof(DownsweepPush), constants,
-                                                   "scan_downsweep");
+    scan_ = std::make_unique<ComputePipeline>(context, scan_lookback_spv, sizeof(ScanPush),
+                                              scan_constants(context, lookback_spins), "scan_lookback");
 }
 
 PrefixScan::~PrefixScan() = default;
 
+void PrefixScan::record_setup(CommandStream& stream, VkDeviceAddress count_address, Scratch& scratch) const {
+    stream.dispatch(*setup_, SetupPush{count_address, scratch.buffer().address(), scratch.capacity(), block_size}, 1);
+}
+
 void PrefixScan::record(CommandStream& stream, VkDeviceAddress input, VkDeviceAddress output,
-                        VkDeviceAddress count_address, VkDeviceAddress total_address, Scratch& scratch) const {
-    const VkDeviceAddress control = scratch.buffer().address();
-    stream.dispatch(*setup_, SetupPush{count_address, control, scratch.capacity(), block_size}, 1);
-    stream.barrier();
-    stream.dispatch_indirect(*reduce_, ReducePush{input, control}, scratch.buffer(), 0);
-    stream.barrier();
-    stream.dispatch(*blocks_, BlocksPush{control, total_address}, 1);
-    stream.barrier();
-    stream.dispatch_indirect(*downsweep_, DownsweepPush{input, output, control}, scratch.buffer(), 0);
+                        VkDeviceAddress total_address, Scratch& scratch, VkDeviceAddress gather) const {
+    // A block that sums an unpublished predecessor itself reads that block's input, which the
+    // predecessor may be overwriting if output were input.
+    if (input == output) throw std::invalid_argument("PrefixScan: input and output must differ (no scan in place)");
+    stream.dispatch_indirect(*scan_, ScanPush{input, gather, output, scratch.buffer().address(), total_address},
+                             scratch.buffer(), 0);
 }
 
 }  // namespace vksplat::gpu

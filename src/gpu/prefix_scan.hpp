@@ -1,8 +1,11 @@
 #pragma once
 // PrefixScan: exclusive prefix sum of uint32 values on the GPU, with the element count read from
-// GPU memory (no CPU round trip): a one-invocation setup kernel turns the count into indirect
-// dispatch sizes, then reduce per block -> scan of the block sums (one workgroup, any number of
-// them) -> downsweep per block. Works for any subgroup size.
+// GPU memory (no CPU round trip): a one-workgroup setup kernel turns the count into an indirect
+// dispatch size, then one kernel scans every block and chains the blocks by decoupled look-back
+// (with a fallback that needs no forward-progress guarantee: scan_lookback.comp). The setup is
+// recorded apart so that a frame can run it beside earlier work, as soon as the count is known:
+// each kernel in a chain costs a few microseconds however little it does. Sums are exact below
+// 2^30 and saturate there. Works for any subgroup size.
 #include <cstdint>
 #include <memory>
 
@@ -18,7 +21,10 @@ public:
     static constexpr uint32_t items_per_thread = 16;
     static constexpr uint32_t block_size = workgroup_size * items_per_thread;  // elements per block
 
-    explicit PrefixScan(const Context& context);
+    // lookback_spins: polls of an unpublished predecessor block before a block sums it itself (0
+    // makes that fallback common: tests use it to check it).
+    static constexpr uint32_t default_lookback_spins = 64;
+    explicit PrefixScan(const Context& context, uint32_t lookback_spins = default_lookback_spins);
     ~PrefixScan();
     PrefixScan(const PrefixScan&) = delete;
     PrefixScan& operator=(const PrefixScan&) = delete;
@@ -35,7 +41,7 @@ public:
         const Buffer& buffer() const { return buffer_; }
         uint64_t device_bytes() const { return buffer_.size(); }
         // Layout of buffer(), in uints: [0..2] VkDispatchIndirectCommand, [3] count (clamped to
-        // capacity), [4] number of blocks, [16..] one sum per block.
+        // capacity), [4] number of blocks, [16..] one look-back word per block.
         static constexpr uint32_t sums_offset = 16;
 
     private:
@@ -43,21 +49,23 @@ public:
         Buffer buffer_;
     };
 
-    // Records an exclusive prefix sum of `count` uint32 values, where count is read by the GPU from
-    // the uint at count_address (values above the scratch capacity are clamped to it). input and
-    // output are device addresses of uint arrays and may be the same (in place). If
-    // total_address != 0 the sum of all values is written there. No CPU round trip: dispatch
-    // sizes are computed on the GPU. The caller records a barrier before (for its inputs); this
-    // records barriers between its own kernels and ends with its writes NOT yet made visible
-    // (caller records barrier()).
-    void record(CommandStream& stream, VkDeviceAddress input, VkDeviceAddress output, VkDeviceAddress count_address,
-                VkDeviceAddress total_address, Scratch& scratch) const;
+    // Records the setup of a scan of `count` uint32 values, where count is read by the GPU from the
+    // uint at count_address (values above the scratch capacity are clamped to it). The count must
+    // be written and made visible before (a barrier after its producer); record() follows after a
+    // barrier, and nothing else may use the scratch in between.
+    void record_setup(CommandStream& stream, VkDeviceAddress count_address, Scratch& scratch) const;
+
+    // Records the exclusive prefix sum set up by record_setup. input and output are device
+    // addresses of distinct uint arrays (throws std::invalid_argument if they are the same). If total_address != 0 the sum of
+    // all values is written there. If gather != 0 (uint indices) the scanned sequence is
+    // input[gather[i]] instead of input[i]. The caller records a barrier before (for its inputs and
+    // the setup); this ends with its writes NOT yet made visible (caller records barrier()).
+    void record(CommandStream& stream, VkDeviceAddress input, VkDeviceAddress output, VkDeviceAddress total_address,
+                Scratch& scratch, VkDeviceAddress gather = 0) const;
 
 private:
     std::unique_ptr<ComputePipeline> setup_;
-    std::unique_ptr<ComputePipeline> reduce_;
-    std::unique_ptr<ComputePipeline> blocks_;
-    std::unique_ptr<ComputePipeline> downsweep_;
+    std::unique_ptr<ComputePipeline> scan_;
 };
 
 }  // namespace vksplat::gpu

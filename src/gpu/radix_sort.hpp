@@ -1,9 +1,13 @@
 #pragma once
 // RadixSort: stable LSD radix sort of (key, value) uint32 pairs on the GPU, by the low key_bits
-// bits of the keys, with the count read from GPU memory. Per pass (digits of up to 8 bits):
-// per-block digit histogram (and per-digit totals) -> one-dispatch scan into output positions ->
-// stable scatter: keys ranked
-// with subgroup ballots, each block reordered by digit in shared memory, then written in runs.
+// bits of the keys, with the count read from GPU memory. Per pass (digits of up to 8 bits) a
+// scatter kernel ranks each block's keys with subgroup ballots, reorders the block by digit in
+// shared memory and writes it in runs. Where the earlier blocks' digit counts come from depends on
+// the size (radix_sort.cpp): small sorts run one sweep (one histogram kernel for all passes, then
+// decoupled look-back inside the scatter, with a fallback that needs no forward-progress
+// guarantee: 1 + passes kernels), large ones a block histogram and its scan per pass
+// (3 x passes kernels). A frame's fixed cost is its chain of dependent kernels, about 4.5 us each
+// on an H100 however little they do; large sorts are bound by memory instead.
 // Works for any subgroup size (sizes come from DeviceInfo as specialisation constants; the
 // workgroup size is a multiple of the subgroup size, and subgroups are assumed to be full, as
 // every driver we know of runs them for such workgroups).
@@ -18,12 +22,15 @@ namespace vksplat::gpu {
 
 class RadixSort {
 public:
-    explicit RadixSort(const Context& context);
+    // lookback_spins: polls of a predecessor block that has not published its digit counts before
+    // a scatter block counts them itself (0 makes that fallback common: tests use it to check it).
+    static constexpr uint32_t default_lookback_spins = 64;
+    explicit RadixSort(const Context& context, uint32_t lookback_spins = default_lookback_spins);
     ~RadixSort();
     RadixSort(const RadixSort&) = delete;
     RadixSort& operator=(const RadixSort&) = delete;
 
-    // Ping-pong buffers, histogram and scan scratch for sorts of up to max_count pairs. One
+    // Ping-pong buffers, look-back words and control for sorts of up to max_count pairs. One
     // scratch serves one sort at a time in a command stream.
     class Scratch {
     public:
@@ -33,7 +40,7 @@ public:
         uint32_t capacity() const { return capacity_; }
         // Device memory held (for memory statistics).
         uint64_t device_bytes() const {
-            return keys_.size() + values_.size() + histogram_.size() + control_.size();
+            return keys_.size() + values_.size() + block_words_.size() + control_.size();
         }
 
     private:
@@ -41,19 +48,27 @@ public:
         uint32_t capacity_ = 0;
         Buffer keys_;       // ping-pong partner of the caller's keys
         Buffer values_;     // ... and values
-        Buffer histogram_;  // radix x blocks digit counts, scanned in place
+        Buffer block_words_;  // one sweep: look-back words [block][pass][digit]; else hist[digit][block]
         Buffer control_;    // [0..2] DispatchArgs, [3] count, [4] blocks; per-pass digit totals
     };
 
-    // Stable LSD sort of (key, value) uint32 pairs by the low key_bits (1..32) bits of the keys.
-    // count is read by the GPU from count_address (clamped to the capacity of keys, values and
-    // scratch). Elements past count are left untouched. The result ends in `keys` and `values`
-    // (the number of passes is made even, with the bits spread over them, so the ping-pong ends
-    // where it began). The caller records a barrier before (for its inputs); this records
-    // barriers between its own kernels and ends with its writes NOT yet made visible (caller
-    // records barrier()).
-    void record(CommandStream& stream, const Buffer& keys, const Buffer& values, VkDeviceAddress count_address,
-                uint32_t key_bits, Scratch& scratch) const;
+    // Records the setup of a sort of `count` pairs, where count is read by the GPU from
+    // count_address (clamped to the capacity of keys, values and scratch). The count must be
+    // written and made visible before (a barrier after its producer); record() follows after a
+    // barrier, with the same keys, values and scratch, and nothing else may use the scratch in
+    // between. Recorded apart so that a frame can run it beside earlier work: each kernel in a
+    // chain costs a few microseconds however little it does.
+    void record_setup(CommandStream& stream, const Buffer& keys, const Buffer& values, VkDeviceAddress count_address,
+                      Scratch& scratch) const;
+
+    // Stable LSD sort of the (key, value) uint32 pairs set up by record_setup, by the low key_bits
+    // (1..32) bits of the keys. Elements past count are left untouched. The result ends in `keys`
+    // and `values` (the number of passes is made even, with the bits spread over them, so the
+    // ping-pong ends where it began). The caller records a barrier before (for its inputs and the
+    // setup); this records barriers between its own kernels and ends with its writes NOT yet made
+    // visible (caller records barrier()).
+    void record(CommandStream& stream, const Buffer& keys, const Buffer& values, uint32_t key_bits,
+                Scratch& scratch) const;
 
     // Digit passes a sort by key_bits (1..32) bits makes: what its time scales with.
     static uint32_t passes_for(uint32_t key_bits);
@@ -62,10 +77,16 @@ public:
     uint32_t block_size() const { return block_size_; }
 
 private:
-    std::unique_ptr<ComputePipeline> scan_histogram_;
+    // Pairs a sort of these buffers may hold, and whether it runs one sweep.
+    static uint64_t capacity(const Buffer& keys, const Buffer& values, const Scratch& scratch);
+    bool one_sweep(uint64_t capacity) const;
+
     uint32_t block_size_ = 0;
     std::unique_ptr<ComputePipeline> setup_;
-    std::unique_ptr<ComputePipeline> histogram_;
+    std::unique_ptr<ComputePipeline> histogram_;        // one sweep: every pass's digit totals
+    std::unique_ptr<ComputePipeline> one_sweep_scatter_;
+    std::unique_ptr<ComputePipeline> block_histogram_;  // large sorts, per pass
+    std::unique_ptr<ComputePipeline> scan_histogram_;
     std::unique_ptr<ComputePipeline> scatter_;
 };
 

@@ -95,8 +95,9 @@ DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions&
         });
         const double ms = median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
             stream.copy(original, key_buffer, original.size());
+            sort.record_setup(stream, key_buffer, value_buffer, count.address(), scratch);
             stream.barrier();
-            sort.record(stream, key_buffer, value_buffer, count.address(), 32, scratch);
+            sort.record(stream, key_buffer, value_buffer, 32, scratch);
         });
         rates.sort_pairs_per_ms = double(n) / std::max(ms - restore_ms, 1e-6);
     }

@@ -20,7 +20,7 @@ struct FrameResources {
     // Per Gaussian (capacity gaussian_capacity).
     uint32_t gaussian_capacity = 0;
     gpu::Buffer means_depth, conic_opacity, colors, rects, tiles_touched, visible, visible_offsets;
-    gpu::Buffer depth_keys, depth_values, sorted_tile_counts, entry_offsets;
+    gpu::Buffer depth_keys, depth_values, entry_offsets;
     std::unique_ptr<gpu::PrefixScan::Scratch> scan_scratch;
 
     // Per tile entry (capacity entry_capacity).

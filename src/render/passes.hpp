@@ -28,12 +28,6 @@ struct IndirectArgsPush {
 void record_indirect_args(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                           const IndirectArgsPush& push);
 
-struct GatherTileCountsPush {
-    Address counters, depth_values, tiles_touched, sorted_tile_counts;
-};
-void record_gather_tile_counts(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
-                               const GatherTileCountsPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
-
 struct EmitTileEntriesPush {
     Address camera, counters, depth_values, entry_offsets, rects, means_depth, conic_opacity, tiles_touched, tile_keys,
         tile_values;

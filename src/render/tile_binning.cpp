@@ -5,7 +5,6 @@
 #include "render/passes.hpp"
 #include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
-#include "shaders/gather_tile_counts.spv.h"
 #include "shaders/indirect_args.spv.h"
 #include "shaders/preprocess.spv.h"
 #include "shaders/tile_ranges.spv.h"
@@ -18,8 +17,6 @@ TileBinning::TileBinning(const gpu::Context& c)
     : preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
       compact_visible_(c, gpu::spirv_words(compact_visible_spv), sizeof(CompactVisiblePush), {}, "compact_visible"),
       indirect_args_(c, gpu::spirv_words(indirect_args_spv), sizeof(IndirectArgsPush), {}, "indirect_args"),
-      gather_tile_counts_(c, gpu::spirv_words(gather_tile_counts_spv), sizeof(GatherTileCountsPush), {},
-                          "gather_tile_counts"),
       emit_tile_entries_(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(EmitTileEntriesPush), {},
                          "emit_tile_entries"),
       tile_ranges_(c, gpu::spirv_words(tile_ranges_spv), sizeof(TileRangesPush), {}, "tile_ranges"),
@@ -39,15 +36,17 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
     stream.barrier();
 
+    // Each kernel below waits for the one before (a few microseconds apiece however little they
+    // do), so the scans' and sorts' setups run beside earlier kernels as soon as their counts are known.
     record_preprocess(stream, preprocess_,
                       {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.conic_opacity.address(),
                        f.colors.address(), f.rects.address(), f.tiles_touched.address(), f.visible.address()},
                       n);
+    scan_.record_setup(stream, counter(kCounterGaussians), *f.scan_scratch);
     stream.barrier();
     stream.mark("preprocess");
 
-    scan_.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterGaussians),
-                 counter(kCounterVisible), *f.scan_scratch);
+    scan_.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterVisible), *f.scan_scratch);
     stream.barrier();
     record_compact_visible(stream, compact_visible_,
                            {f.camera.address(), f.visible.address(), f.visible_offsets.address(),
@@ -56,20 +55,20 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     record_indirect_args(stream, indirect_args_,
                          {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
                           f.gaussian_capacity, 256});
+    sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), *f.sort_scratch);
+    scan_.record_setup(stream, counter(kCounterVisible), *f.scan_scratch);
     stream.barrier();
     stream.mark("compact");
 
-    sort_.record(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), 32, *f.sort_scratch);
+    sort_.record(stream, f.depth_keys, f.depth_values, 32, *f.sort_scratch);
     stream.barrier();
     stream.mark("depth sort");
 
-    record_gather_tile_counts(stream, gather_tile_counts_,
-                              {f.counters.address(), f.depth_values.address(), f.tiles_touched.address(),
-                               f.sorted_tile_counts.address()},
-                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
-    stream.barrier();
-    scan_.record(stream, f.sorted_tile_counts.address(), f.entry_offsets.address(), counter(kCounterVisible),
-                 counter(kCounterEntriesNeeded), *f.scan_scratch);
+    // Tile counts scanned in depth order hand out entry slots front to back: entries are then
+    // emitted already sorted by depth within every tile, and the tile sort only needs to be
+    // stable on the tile bits.
+    scan_.record(stream, f.tiles_touched.address(), f.entry_offsets.address(), counter(kCounterEntriesNeeded),
+                 *f.scan_scratch, f.depth_values.address());
     stream.barrier();
     record_indirect_args(stream, indirect_args_,
                          {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
@@ -80,12 +79,13 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
                               f.conic_opacity.address(), f.tiles_touched.address(), f.tile_keys.address(),
                               f.tile_values.address()},
                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
+    // The sort clamps the entries needed to what the tile buffers hold, as indirect_args does.
+    sort_.record_setup(stream, f.tile_keys, f.tile_values, counter(kCounterEntriesNeeded), *f.sort_scratch);
     stream.barrier();
     stream.mark("tile entries");
 
     // A stable sort on just the tile bits keeps each tile's entries in depth order.
-    sort_.record(stream, f.tile_keys, f.tile_values, counter(kCounterEntries), tile_key_bits(tiles_x * tiles_y),
-                 *f.sort_scratch);
+    sort_.record(stream, f.tile_keys, f.tile_values, tile_key_bits(tiles_x * tiles_y), *f.sort_scratch);
     stream.barrier();
     stream.mark("tile sort");
 

@@ -39,7 +39,7 @@ public:
                 const SceneAddresses& scene) const;
 
 private:
-    gpu::ComputePipeline preprocess_, compact_visible_, indirect_args_, gather_tile_counts_, emit_tile_entries_,
+    gpu::ComputePipeline preprocess_, compact_visible_, indirect_args_, emit_tile_entries_,
         tile_ranges_;
     gpu::PrefixScan scan_;
     gpu::RadixSort sort_;

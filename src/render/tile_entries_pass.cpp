@@ -2,11 +2,6 @@
 
 namespace vksplat::render {
 
-void record_gather_tile_counts(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
-                               const GatherTileCountsPush& push, const gpu::Buffer& args, VkDeviceSize args_offset) {
-    stream.dispatch_indirect(pipeline, push, args, args_offset);
-}
-
 void record_emit_tile_entries(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                               const EmitTileEntriesPush& push, const gpu::Buffer& args, VkDeviceSize args_offset) {
     stream.dispatch_indirect(pipeline, push, args, args_offset);
