@@ -1,16 +1,11 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
 // RadixSort, a pass of a one-sweep sort (the only kernel per pass): each workgroup takes a block of
-// keys, ranks them stably by this pass's digit (as radix_scatter.comp does), learns how many keys
-// of each digit earlier blocks hold, and moves every (key, value) to its stable position:
+// keys, ranks them stably by this pass's digit, learns how many keys of each digit earlier blocks
+// hold, and moves every (key, value) to its stable position (ranking and writing: radix_block.glsl):
 //   keys of smaller digits (the histogram kernel's totals)
 // + keys of its digit in earlier blocks (decoupled look-back, below)
 // + its rank among the block's keys of its digit.
-// Ranking: a subgroup owns a contiguous part of the block (gl_SubgroupSize * ITEMS keys) and walks
-// it in rows of gl_SubgroupSize keys, one per lane, keeping a per-digit count in shared memory; a
-// key's rank inside its row comes from ballots (one per digit bit) giving the lanes with the same
-// digit. The block is then reordered in shared memory by digit, so that neighbouring invocations
-// write neighbouring addresses (one run per digit) instead of scattering single words.
 //
 // Look-back: as soon as a block has counted its digits it publishes them (AGGREGATE), and once it
 // knows its earlier blocks' counts too, their sum with its own (PREFIX). A block walks back over
@@ -18,7 +13,6 @@
 // not published would assume it gets to run, which Vulkan does not promise (workgroups need not
 // be scheduled fairly, nor in order), so after SPIN_LIMIT polls the block counts that
 // predecessor's keys itself (decoupled fallback, Smith, Levien & Owens 2025): slower, never stuck.
-// Works for any subgroup size (subgroups must be full: workgroup size a multiple of it).
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
@@ -34,7 +28,6 @@ const uint WINDOW = 8;  // predecessors read per look-back round trip
 #define WGS_MAX_SUBGROUPS MAX_SUBGROUPS
 #include "workgroup_scan.glsl"
 
-const uint MAX_DIGIT_BITS = 8;
 const uint DIGITS_PER_INVOCATION = (RADIX_MAX + gl_WorkGroupSize.x - 1) / gl_WorkGroupSize.x;
 
 // Look-back words are polled while other workgroups write them: read and written only by atomics
@@ -56,13 +49,8 @@ layout(push_constant) uniform Push {
     uint bits;
 } pc;
 
-// [subgroup][digit]: first the subgroup's count of each digit in its part of the block, then the
-// block-local position of its first key of that digit.
-shared uint counts[MAX_SUBGROUPS * RADIX_MAX];
-// Per digit: output position minus block-local position.
-shared uint displacement[RADIX_MAX];
-// The block's keys, then its values, in block-local (digit-sorted) order.
-shared uint staged[gl_WorkGroupSize.x * ITEMS];
+#include "radix_block.glsl"
+
 // A predecessor's digit counts, when the block has to count them itself.
 shared uint fallback[RADIX_MAX];
 shared uint lookback_counted;  // 1 + the predecessor block the workgroup counts itself, or 0
@@ -74,9 +62,7 @@ void main() {
     const uint block_size = size * ITEMS;
     const uint radix = 1u << pc.bits;
     const uint mask = radix - 1u;
-    const uint lane = gl_SubgroupInvocationID;
-    const uint column = gl_SubgroupID * RADIX_MAX;
-    const uint local = gl_SubgroupID * gl_SubgroupSize + lane;
+    const uint local = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
     const uint digit0 = local * DIGITS_PER_INVOCATION;
 
     // Keys of smaller digits, for this invocation's first digit.
@@ -90,55 +76,19 @@ void main() {
     const uint smaller_digits = workgroup_exclusive_add(my_total, all_keys);
 
     for (uint block = gl_WorkGroupID.x; block < blocks; block += gl_NumWorkGroups.x) {
-        for (uint d = lane; d < RADIX_MAX; d += gl_SubgroupSize) counts[column + d] = 0;
-        if (gl_LocalInvocationIndex == 0) lookback_counted = 0;  // read after the barrier below
-        subgroupBarrier();
+        if (gl_LocalInvocationIndex == 0) lookback_counted = 0;  // read after radix_rank_block's barrier
+        uint keys[ITEMS], values[ITEMS], ranks[ITEMS];
+        radix_rank_block(block, count, mask, keys, values, ranks);
 
-        // 1. Rank each key among this subgroup's keys of its digit, row by row.
-        const uint first = block * block_size + gl_SubgroupID * gl_SubgroupSize * ITEMS + lane;
-        uint keys[ITEMS];
-        uint values[ITEMS];
-        uint ranks[ITEMS];  // rank within the subgroup's keys of the digit, later block-local position
-        for (uint row = 0; row < ITEMS; ++row) {
-            const uint index = first + row * gl_SubgroupSize;
-            const bool valid = index < count;
-            keys[row] = valid ? pc.keys_in.v[index] : 0u;
-            values[row] = valid ? pc.values_in.v[index] : 0u;
-            const uint digit = (keys[row] >> pc.shift) & mask;
-
-            // A fixed trip count (bits above the digit are 0 in every valid lane, so those
-            // rounds keep `same` as it is) lets compilers unroll this.
-            uvec4 same = subgroupBallot(valid);
-            for (uint b = 0; b < MAX_DIGIT_BITS; ++b) {
-                const bool set = ((digit >> b) & 1u) != 0;
-                const uvec4 ones = subgroupBallot(set);
-                same &= set ? ones : ~ones;
-            }
-            const uint before = subgroupBallotExclusiveBitCount(same);
-            const uint seen = counts[column + digit];
-            ranks[row] = valid ? seen + before : 0xffffffffu;
-            subgroupBarrier();  // every lane has read counts[] before it changes
-            if (valid && before == 0) counts[column + digit] = seen + subgroupBallotBitCount(same);
-            subgroupBarrier();
-        }
-        barrier();
-
-        // 2. Block-local positions: each invocation takes DIGITS_PER_INVOCATION consecutive
-        // digits, scans them over the subgroups, and a workgroup scan (in the order below)
-        // orders the digits. The block's count of each digit is published at once.
+        // Block-local positions: each invocation takes DIGITS_PER_INVOCATION consecutive digits,
+        // scans them over the subgroups, and a workgroup scan (in the order below) orders the
+        // digits. The block's count of each digit is published at once.
         uint digit_count[DIGITS_PER_INVOCATION];
         uint local_first[DIGITS_PER_INVOCATION];
         uint my_keys = 0;
         for (uint i = 0; i < DIGITS_PER_INVOCATION; ++i) {
             const uint d = digit0 + i;
-            uint running = 0;
-            if (d < RADIX_MAX) {
-                for (uint s = 0; s < gl_NumSubgroups; ++s) {
-                    const uint n = counts[s * RADIX_MAX + d];
-                    counts[s * RADIX_MAX + d] = running;
-                    running += n;
-                }
-            }
+            const uint running = d < RADIX_MAX ? radix_scan_digit(d) : 0u;
             if (d < radix)
                 atomicExchange(pc.lookback.v[lookback_index(block, pc.pass, d)],
                                (block == 0 ? LOOKBACK_PREFIX : LOOKBACK_AGGREGATE) | running);
@@ -149,13 +99,12 @@ void main() {
         uint local_start = workgroup_exclusive_add(my_keys, block_keys);
         for (uint i = 0; i < DIGITS_PER_INVOCATION; ++i) {
             const uint d = digit0 + i;
-            if (d < RADIX_MAX)
-                for (uint s = 0; s < gl_NumSubgroups; ++s) counts[s * RADIX_MAX + d] += local_start;
+            if (d < RADIX_MAX) radix_offset_digit(d, local_start);
             local_first[i] = local_start;
             local_start += digit_count[i];
         }
 
-        // 3. Keys of each digit in earlier blocks. Each digit walks back on its own, with no
+        // Keys of each digit in earlier blocks. Each digit walks back on its own, with no
         // barrier, reading WINDOW predecessors per round trip to memory and adding AGGREGATEs up to
         // the first PREFIX. An unpublished predecessor stops a digit there; a digit stopped for
         // SPIN_LIMIT rounds waits for the workgroup, which then counts that block's keys itself.
@@ -224,34 +173,6 @@ void main() {
             for (uint k = 0; k < i; ++k) smaller += digit_total[k];
             if (digit_count[i] != 0) displacement[d] = smaller + earlier[i] - local_first[i];
         }
-        barrier();
-
-        // 4. Reorder keys through shared memory and write them out in runs.
-        for (uint row = 0; row < ITEMS; ++row) {
-            if (ranks[row] != 0xffffffffu) {
-                ranks[row] += counts[column + ((keys[row] >> pc.shift) & mask)];
-                staged[ranks[row]] = keys[row];
-            }
-        }
-        barrier();
-        uint destination[ITEMS];
-        for (uint i = 0; i < ITEMS; ++i) {
-            const uint j = i * size + gl_LocalInvocationIndex;
-            if (j < block_keys) {
-                const uint key = staged[j];
-                destination[i] = displacement[(key >> pc.shift) & mask] + j;
-                pc.keys_out.v[destination[i]] = key;
-            }
-        }
-        barrier();
-        // 5. The same for the values.
-        for (uint row = 0; row < ITEMS; ++row)
-            if (ranks[row] != 0xffffffffu) staged[ranks[row]] = values[row];
-        barrier();
-        for (uint i = 0; i < ITEMS; ++i) {
-            const uint j = i * size + gl_LocalInvocationIndex;
-            if (j < block_keys) pc.values_out.v[destination[i]] = staged[j];
-        }
-        barrier();
+        radix_write_block(block_keys, mask, keys, values, ranks);
     }
 }
