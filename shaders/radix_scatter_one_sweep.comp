@@ -11,7 +11,7 @@
 // knows its earlier blocks' counts too, their sum with its own (PREFIX). A block walks back over
 // its predecessors adding AGGREGATEs until it meets a PREFIX. Waiting on a predecessor that has
 // not published would assume it gets to run, which Vulkan does not promise (workgroups need not
-// be scheduled fairly, nor in order), so after SPIN_LIMIT polls the block counts that
+// be scheduled fairly, nor in order), so after SPIN_LIMIT rounds of polls the block counts that
 // predecessor's keys itself (decoupled fallback, Smith, Levien & Owens 2025): slower, never stuck.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
@@ -32,8 +32,8 @@ const uint DIGITS_PER_INVOCATION = (RADIX_MAX + gl_WorkGroupSize.x - 1) / gl_Wor
 
 // Look-back words are polled while other workgroups write them: read and written only by atomics
 // (plain reads, even volatile ones, were seen on lavapipe to be re-read between uses, mixing one
-// word's flag with a later word's value); the polls are relaxed atomic loads, which on an H100 cost
-// a third of what read-modify-write polls did.
+// word's flag with a later word's value); the polls are relaxed atomic loads (lego's depth sort on
+// an H100: 0.118 ms, 0.189 with read-modify-write polls).
 layout(buffer_reference, std430, buffer_reference_align = 4) coherent buffer LookbackWords { uint v[]; };
 
 layout(push_constant) uniform Push {
