@@ -28,7 +28,7 @@ layout(constant_id = 3) const uint SPIN_LIMIT = 64;
 const uint LOOKBACK = 16;  // first look-back word in the control words
 const uint AGGREGATE = 1u << 30;
 const uint PREFIX = 2u << 30;
-const uint VALUE_MASK = (1u << 30) - 1u;
+const uint VALUE_MASK = (1u << 30) - 1u;  // PrefixScan::saturated_sum
 
 // Polled while other workgroups write them: read (relaxed atomic loads) and written only by atomics
 // (plain reads, even volatile ones, were seen on lavapipe to be re-read between uses, mixing a flag

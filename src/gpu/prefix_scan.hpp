@@ -20,6 +20,9 @@ public:
     static constexpr uint32_t workgroup_size = 128;
     static constexpr uint32_t items_per_thread = 16;
     static constexpr uint32_t block_size = workgroup_size * items_per_thread;  // elements per block
+    // Sums from this value up are saturated: the true sum is at least this (a look-back word holds
+    // a 2-bit flag and a 30-bit value).
+    static constexpr uint32_t saturated_sum = (1u << 30) - 1;
 
     // lookback_spins: polls of an unpublished predecessor block before a block sums it itself (0
     // makes that fallback common: tests use it to check it).

@@ -10,6 +10,7 @@
 #include "gpu/command_stream.hpp"
 #include "gpu/compute_pipeline.hpp"
 #include "gpu/context_impl.hpp"
+#include "gpu/prefix_scan.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
@@ -280,10 +281,8 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         stats.tile_entries = counters[render::kCounterEntriesNeeded];
         if (stats.tile_entries <= frame.entry_capacity) break;
         // The view needs more tile entries than the buffers hold: grow with headroom and redo it.
+        render::check_entries_sortable(stats.tile_entries);
         const double grown = std::ceil(stats.tile_entries * kEntryGrowth);
-        if (grown > 0xffffffffu / 2)
-            throw GpuError("view needs " + std::to_string(stats.tile_entries) +
-                           " tile entries, more than one frame can sort");
         if (has_host && scene_device_bytes() + projected_frame_bytes(scene.count, static_cast<uint32_t>(grown), pixels,
                                                                      tiles, false, settings.gather_stats) > budget) {
             stats = {};
@@ -390,6 +389,13 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         const uint32_t count = end - begin;
         if (needed > frame.entry_capacity) {
             ++stats.attempts;
+            if (needed >= gpu::PrefixScan::saturated_sum && count > 1) {
+                // Counted only as "at least": split the chunk until each half can be counted.
+                pending.emplace_front(begin + count / 2, end);
+                pending.emplace_front(begin, begin + count / 2);
+                continue;
+            }
+            render::check_entries_sortable(needed);
             chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
             const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
             if (held_with(chunks->capacity, grown) <= budget) {
@@ -463,6 +469,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
         std::memcpy(counters, frame.recorded_counters.mapped(), sizeof(counters));
         stats.visible = counters[render::kCounterVisible];
         stats.tile_entries = counters[render::kCounterEntriesNeeded];
+        render::check_entries_sortable(stats.tile_entries);
         if (stats.tile_entries > entries)
             entries = static_cast<uint32_t>(std::min(std::ceil(stats.tile_entries * kEntryGrowth), double(0x7fffffffu)));
     }

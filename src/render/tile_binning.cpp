@@ -1,6 +1,7 @@
 #include "render/tile_binning.hpp"
 
 #include <bit>
+#include <string>
 
 #include "render/passes.hpp"
 #include "shaders/compact_visible.spv.h"
@@ -8,10 +9,18 @@
 #include "shaders/indirect_args.spv.h"
 #include "shaders/preprocess.spv.h"
 #include "shaders/tile_ranges.spv.h"
+#include "vksplat/error.hpp"
 
 namespace vksplat::render {
 
 uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
+
+void check_entries_sortable(uint32_t needed) {
+    if (needed >= gpu::PrefixScan::saturated_sum)
+        throw GpuError("view needs at least " + std::to_string(needed) +
+                       " tile entries, more than one frame can sort (fewer or smaller Gaussians in view, or a "
+                       "smaller image)");
+}
 
 TileBinning::TileBinning(const gpu::Context& c)
     : preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),

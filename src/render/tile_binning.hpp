@@ -26,6 +26,11 @@ struct SceneAddresses {
 // every real tile.
 uint32_t tile_key_bits(uint32_t tiles);
 
+// Throws GpuError when a view's counted tile entries (kCounterEntriesNeeded) are more than one frame
+// can sort: the scan that counts them saturates, so from PrefixScan::saturated_sum up the count
+// is only a lower bound, and a frame sized by it would drop entries unseen.
+void check_entries_sortable(uint32_t needed);
+
 class TileBinning {
 public:
     explicit TileBinning(const gpu::Context& context);

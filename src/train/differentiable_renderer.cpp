@@ -64,10 +64,8 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
 }
 
 void DifferentiableRenderer::grow_entries(uint32_t needed) {
-    const double grown = std::ceil(needed * kEntryGrowth);
-    if (grown > 0xffffffffu / 2)
-        throw GpuError("view needs " + std::to_string(needed) + " tile entries, more than one frame can sort");
-    frame_.ensure_entries(static_cast<uint32_t>(grown));
+    render::check_entries_sortable(needed);
+    frame_.ensure_entries(static_cast<uint32_t>(std::ceil(needed * kEntryGrowth)));
 }
 
 void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const TrainableScene& scene,

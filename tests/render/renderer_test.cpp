@@ -37,6 +37,20 @@ TEST_F(RendererTest, GrowsTileEntriesWhenAViewNeedsMore) {
     EXPECT_EQ(grown.rgb, again.rgb);
 }
 
+TEST_F(RendererTest, MoreTileEntriesThanAFrameCanSortIsAClearError) {
+    // 36,000 splats wider than a 4K view, each in all of its 32,400 tiles: 1.17e9 entries, past the
+    // 2^30 at which the count saturates. A frame sized by the saturated count would drop entries
+    // unseen; the renderer must say so instead.
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(25, 36000, 0, 4.0f, 6.0f, 8.0f, 12.0f, 0.5f));
+    try {
+        renderer.render(forward_camera(3840, 2160, 2000.0));
+        FAIL() << "rendered a view that needs more tile entries than a frame can sort";
+    } catch (const GpuError& e) {
+        EXPECT_NE(std::string(e.what()).find("more than one frame can sort"), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(RendererTest, ReportsStagesAndCounts) {
     Renderer renderer(context());
     renderer.set_scene(random_scene(23, 1000, 1));
