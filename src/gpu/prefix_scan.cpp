@@ -37,7 +37,7 @@ std::vector<uint32_t> scan_constants(const Context& context, uint32_t lookback_s
 }  // namespace
 
 uint64_t PrefixScan::Scratch::bytes_for(const Context&, uint32_t max_count) {
-    return (VkDeviceSize(sums_offset) + (VkDeviceSize(max_count) + block_size - 1) / block_size + 1) * sizeof(uint32_t);
+    return (VkDeviceSize(lookback_offset) + (VkDeviceSize(max_count) + block_size - 1) / block_size + 1) * sizeof(uint32_t);
 }
 
 PrefixScan::Scratch::Scratch(const Context& context, uint32_t max_count)

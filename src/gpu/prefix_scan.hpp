@@ -45,7 +45,7 @@ public:
         uint64_t device_bytes() const { return buffer_.size(); }
         // Layout of buffer(), in uints: [0..2] VkDispatchIndirectCommand, [3] count (clamped to
         // capacity), [4] number of blocks, [16..] one look-back word per block.
-        static constexpr uint32_t sums_offset = 16;
+        static constexpr uint32_t lookback_offset = 16;
 
     private:
         uint32_t capacity_ = 0;
