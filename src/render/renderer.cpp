@@ -279,9 +279,10 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
         stats.visible = counters[render::kCounterVisible];
         stats.tile_entries = counters[render::kCounterEntriesNeeded];
+        // Before the capacity test: a saturated count may be below a capacity grown for an earlier view.
+        render::check_entries_sortable(stats.tile_entries);
         if (stats.tile_entries <= frame.entry_capacity) break;
         // The view needs more tile entries than the buffers hold: grow with headroom and redo it.
-        render::check_entries_sortable(stats.tile_entries);
         const double grown = std::ceil(stats.tile_entries * kEntryGrowth);
         if (has_host && scene_device_bytes() + projected_frame_bytes(scene.count, static_cast<uint32_t>(grown), pixels,
                                                                      tiles, false, settings.gather_stats) > budget) {
@@ -387,15 +388,17 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
         const uint32_t needed = counters[render::kCounterEntriesNeeded];
         const uint32_t count = end - begin;
+        if (needed >= gpu::PrefixScan::saturated_sum && count > 1) {
+            // Counted only as "at least" (whatever the capacity): split the chunk until each half
+            // can be counted.
+            ++stats.attempts;
+            pending.emplace_front(begin + count / 2, end);
+            pending.emplace_front(begin, begin + count / 2);
+            continue;
+        }
+        render::check_entries_sortable(needed);
         if (needed > frame.entry_capacity) {
             ++stats.attempts;
-            if (needed >= gpu::PrefixScan::saturated_sum && count > 1) {
-                // Counted only as "at least": split the chunk until each half can be counted.
-                pending.emplace_front(begin + count / 2, end);
-                pending.emplace_front(begin, begin + count / 2);
-                continue;
-            }
-            render::check_entries_sortable(needed);
             chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
             const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
             if (held_with(chunks->capacity, grown) <= budget) {

@@ -64,7 +64,6 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
 }
 
 void DifferentiableRenderer::grow_entries(uint32_t needed) {
-    render::check_entries_sortable(needed);
     frame_.ensure_entries(static_cast<uint32_t>(std::ceil(needed * kEntryGrowth)));
 }
 
@@ -114,7 +113,9 @@ void DifferentiableRenderer::record_readback(gpu::CommandStream& stream) {
 }
 
 uint32_t DifferentiableRenderer::entries_needed() const {
-    return static_cast<const uint32_t*>(readback_.mapped())[render::kCounterEntriesNeeded];
+    const uint32_t needed = static_cast<const uint32_t*>(readback_.mapped())[render::kCounterEntriesNeeded];
+    render::check_entries_sortable(needed);
+    return needed;
 }
 
 uint32_t DifferentiableRenderer::visible() const {
@@ -142,8 +143,9 @@ void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Ca
         record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();
+        const uint32_t needed = entries_needed();  // checked even when the frame fits
         if ((status() & kStepOverflowed) == 0) return;
-        grow_entries(entries_needed());
+        grow_entries(needed);
     }
 }
 

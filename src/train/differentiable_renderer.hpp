@@ -43,6 +43,8 @@ public:
     // want the gradients of a loss of their own (train::render_gradients, the tests).
     void backpropagate(const TrainableScene& scene, const Camera& camera, const RenderSettings& settings,
                        VkDeviceAddress pixel_grad);
+    // The last step's tile entries; throws GpuError when more than one frame can sort
+    // (render::check_entries_sortable).
     uint32_t entries_needed() const;
     uint32_t visible() const;
     uint32_t status() const;

@@ -160,11 +160,12 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
         renderer.record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();
+        const uint32_t needed = renderer.entries_needed();  // checked even when the frame fits
         if ((renderer.status() & kStepOverflowed) == 0) break;
         if (result.attempts == kMaxAttempts)
             throw GpuError("view '" + camera.name + "' still needs more tile entries after " +
                            std::to_string(kMaxAttempts) + " attempts");
-        renderer.grow_entries(renderer.entries_needed());
+        renderer.grow_entries(needed);
     }
     ++iteration;
     result.applied = (renderer.status() & kStepNonfinite) == 0;
