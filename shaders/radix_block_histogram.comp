@@ -5,11 +5,10 @@
 // by radix_setup), from which radix_scan_histogram gives every (digit, block) its first output
 // position for radix_scatter. Workgroups walk the blocks in a grid-stride loop.
 #include "buffers.glsl"
+#include "radix_lookback.glsl"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;  // keys per invocation and block
-
-const uint RADIX_MAX = 256;
 
 layout(push_constant) uniform Push {
     Uints keys;

@@ -20,8 +20,6 @@ layout(push_constant) uniform Push {
     uint passes;
 } pc;
 
-const uint TOTALS = 16;
-
 shared uint counts[MAX_PASSES * RADIX_MAX];
 
 void main() {
@@ -47,5 +45,5 @@ void main() {
     }
     barrier();
     for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
-        if (counts[i] != 0u) atomicAdd(pc.control.v[TOTALS + i], counts[i]);
+        if (counts[i] != 0u) atomicAdd(pc.control.v[RADIX_TOTALS + i], counts[i]);
 }

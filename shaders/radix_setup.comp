@@ -17,11 +17,9 @@ layout(push_constant) uniform Push {
     uint block;     // keys per block
 } pc;
 
-const uint TOTALS = 16;
-
 void main() {
     for (uint i = gl_LocalInvocationIndex; i < MAX_PASSES * RADIX_MAX; i += gl_WorkGroupSize.x)
-        pc.control.v[TOTALS + i] = 0;
+        pc.control.v[RADIX_TOTALS + i] = 0;
     if (gl_LocalInvocationIndex != 0) return;
     const uint count = min(pc.count.v[0], pc.capacity);
     const uint blocks = (count + pc.block - 1) / pc.block;

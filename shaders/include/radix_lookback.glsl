@@ -7,6 +7,8 @@
 
 const uint RADIX_MAX = 256;  // digits of up to 8 bits
 const uint MAX_PASSES = 4;   // keys of up to 32 bits
+// Control word of the first per-pass digit total, totals[pass][digit] (kTotalsOffset / 4 in radix_sort.cpp).
+const uint RADIX_TOTALS = 16;
 const uint LOOKBACK_EMPTY = 0u;                 // the block has not counted its keys yet
 const uint LOOKBACK_AGGREGATE = 1u << 30;       // value: the block's own keys of the digit
 const uint LOOKBACK_PREFIX = 2u << 30;          // value: keys of the digit in this and every earlier block
