@@ -38,7 +38,8 @@ layout(local_size_x = 256) in;
 const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
 const uint BLOCKS = TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y);
 // Splats whose alphas a pixel evaluates before compositing them: their loads and exp chains
-// overlap, and the compositing that follows is in list order, exactly as one at a time.
+// overlap, and the compositing that follows is in list order, exactly as one at a time. H100,
+// snowmiku 13 views: blend 0.169 ms with 2, 0.148 with 4, 0.147 with 8.
 const uint UNROLL = 4;
 // Any subgroup size, down to 1 (lavapipe runs 4 or 8).
 #define WGS_MAX_SUBGROUPS BATCH
@@ -229,18 +230,6 @@ void main() {
     }
 #endif
 
-    // Each thread holds the splat it will put in shared memory for the next batch. Its loads are
-    // issued before the current batch is blended, so their latency (a gather from anywhere in
-    // the splat arrays) hides behind that work instead of stalling the tile at the barrier.
-    uint next_gaussian = 0u;
-    vec4 next_mean_depth = vec4(0.0), next_conic_opacity = vec4(0.0), next_color = vec4(0.0);
-    if (range.x + slot < range.y) {
-        next_gaussian = pc.tile_values.v[range.x + slot];
-        next_mean_depth = pc.means_depth.v[next_gaussian];
-        next_conic_opacity = pc.conic_opacity.v[next_gaussian];
-        next_color = pc.colors.v[next_gaussian];
-    }
-
     for (uint start = range.x; start < range.y; start += BATCH) {
         // The whole tile stops once every pixel is done (a uniform decision, so the barriers
         // below stay in uniform control flow).
@@ -249,25 +238,20 @@ void main() {
         if (state.done) atomicAdd(finished_pixels, 1u);
         uint touched = 0u;
         if (start + slot < range.y) {
-            batch_mean_depth[slot] = next_mean_depth;
-            batch_conic_opacity[slot] = next_conic_opacity;
-            batch_color[slot] = next_color;
-            touched = touched_blocks(next_mean_depth.xy, next_conic_opacity, tile_origin);
+            const uint gaussian = pc.tile_values.v[start + slot];
+            const vec4 mean_depth = pc.means_depth.v[gaussian];
+            const vec4 conic_opacity = pc.conic_opacity.v[gaussian];
+            batch_mean_depth[slot] = mean_depth;
+            batch_conic_opacity[slot] = conic_opacity;
+            batch_color[slot] = pc.colors.v[gaussian];
+            touched = touched_blocks(mean_depth.xy, conic_opacity, tile_origin);
 #if GATHER_STATS
-            batch_gaussian[slot] = next_gaussian;
+            batch_gaussian[slot] = gaussian;
 #endif
         }
         barrier();
         if (finished_pixels == BATCH) break;
         list_block_hits(slot, touched);
-
-        const uint fetch = start + BATCH + slot;
-        if (fetch < range.y) {
-            next_gaussian = pc.tile_values.v[fetch];
-            next_mean_depth = pc.means_depth.v[next_gaussian];
-            next_conic_opacity = pc.conic_opacity.v[next_gaussian];
-            next_color = pc.colors.v[next_gaussian];
-        }
 
         // The splats that miss the pixel's block have alpha < 1/255 there: skipping them leaves
         // the pixel exactly as the reference's walk of the whole list does.
