@@ -31,10 +31,14 @@ void main() {
         for (uint d = gl_LocalInvocationIndex; d < radix; d += size) counts[d] = 0;
         barrier();
         const uint start = block * size * ITEMS;
+        // All loads first, so that they overlap (see radix_rank_block).
+        uint keys[ITEMS];
         for (uint i = 0; i < ITEMS; ++i) {
             const uint index = start + i * size + gl_LocalInvocationIndex;
-            if (index < count) atomicAdd(counts[(pc.keys.v[index] >> pc.shift) & mask], 1u);
+            keys[i] = index < count ? pc.keys.v[index] : 0u;
         }
+        for (uint i = 0; i < ITEMS; ++i)
+            if (start + i * size + gl_LocalInvocationIndex < count) atomicAdd(counts[(keys[i] >> pc.shift) & mask], 1u);
         barrier();
         for (uint d = gl_LocalInvocationIndex; d < radix; d += size) {
             pc.hist.v[d * blocks + block] = counts[d];

@@ -33,10 +33,15 @@ void main() {
         for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
             pc.lookback.v[lookback_index(block, 0, 0) + i] = LOOKBACK_EMPTY;
         const uint start = block * size * ITEMS;
+        // All loads first, so that they overlap (see radix_rank_block).
+        uint keys[ITEMS];
         for (uint i = 0; i < ITEMS; ++i) {
             const uint index = start + i * size + local;
-            if (index >= count) break;
-            const uint key = pc.keys.v[index];
+            keys[i] = index < count ? pc.keys.v[index] : 0u;
+        }
+        for (uint i = 0; i < ITEMS; ++i) {
+            if (start + i * size + local >= count) break;
+            const uint key = keys[i];
             for (uint pass = 0; pass < pc.passes; ++pass) {
                 const uint shift = pc.digits[pass] & 0xffu, bits = pc.digits[pass] >> 8;
                 atomicAdd(counts[pass * RADIX_MAX + ((key >> shift) & ((1u << bits) - 1u))], 1u);

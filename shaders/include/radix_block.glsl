@@ -33,11 +33,15 @@ void radix_rank_block(uint block, uint count, uint mask, out uint keys[ITEMS], o
     for (uint d = lane; d < RADIX_MAX; d += gl_SubgroupSize) counts[column + d] = 0;
     subgroupBarrier();
     const uint first = block * gl_WorkGroupSize.x * ITEMS + gl_SubgroupID * gl_SubgroupSize * ITEMS + lane;
+    // Every load is issued before the first is used: in the ranking loop, behind its barriers,
+    // they would wait for memory one row at a time.
     for (uint row = 0; row < ITEMS; ++row) {
         const uint index = first + row * gl_SubgroupSize;
-        const bool valid = index < count;
-        keys[row] = valid ? pc.keys_in.v[index] : 0u;
-        values[row] = valid ? pc.values_in.v[index] : 0u;
+        keys[row] = index < count ? pc.keys_in.v[index] : 0u;
+        values[row] = index < count ? pc.values_in.v[index] : 0u;
+    }
+    for (uint row = 0; row < ITEMS; ++row) {
+        const bool valid = first + row * gl_SubgroupSize < count;
         const uint digit = (keys[row] >> pc.shift) & mask;
 
         // A fixed trip count (bits above the digit are 0 in every valid lane, so those rounds keep
