@@ -87,6 +87,15 @@ TEST_F(RenderVsReference, HugeGaussians) {
     expect_match(cloud, forward_camera(128, 96, 100.0));
 }
 
+// Splats over more than 128 tiles are emitted by their whole subgroup (emit_tile_entries.comp),
+// beside small ones emitted one per invocation: 25x19 tiles, a few splats over most of them.
+TEST_F(RenderVsReference, HugeGaussiansOverHundredsOfTiles) {
+    GaussianCloud cloud = random_scene(16, 200, 1, 2.0f, 8.0f, 0.01f, 0.1f);
+    const GaussianCloud huge = random_scene(17, 8, 1, 3.0f, 6.0f, 1.0f, 3.0f);
+    for (size_t i = 0; i < huge.size(); ++i) cloud.append(huge, i);
+    expect_match(cloud, forward_camera(400, 300, 300.0));
+}
+
 TEST_F(RenderVsReference, BehindAndStraddlingTheNearPlane) {
     GaussianCloud cloud;
     const double depths[] = {-2.0, -0.1, 0.0, 0.1, 0.19, 0.2, 0.21, 0.3, 0.5, 1.0};
