@@ -13,7 +13,10 @@
 // the splats skipped there (alpha < 1/255) are skipped here. Unlike the reference, a splat whose
 // alpha was clamped at 0.99 gets no gradient through opacity or shape: the clamp is flat there.
 // A subgroup sums its pixels' gradients for a splat, and one invocation adds the sums to the
-// splat's totals (train_layout.glsl's SPLAT_GRAD_ slots).
+// splat's totals (train_layout.glsl's SPLAT_GRAD_ slots). Like the blend, a pixel walks only its
+// block's list of the batch's splats (block_hit_lists.glsl), widened to its subgroup's blocks so
+// that a subgroup's invocations walk one list together.
+#extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #if FLOAT_ATOMICS
@@ -28,6 +31,7 @@
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;
+#include "block_hit_lists.glsl"
 
 layout(push_constant) uniform Push {
     CameraBuffer camera;
@@ -60,7 +64,6 @@ void add_gradient(uint index, float value) {
 shared vec4 batch_mean_depth[BATCH];
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
-shared uint batch_blocks[BATCH];
 shared uint batch_gaussian[BATCH];
 shared uint tile_end;
 
@@ -68,7 +71,9 @@ void main() {
     const CameraParams cam = pc.camera.c;
     const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
     const uvec2 pixel = tile_origin + pixel_in_tile(gl_LocalInvocationIndex);
-    const uint my_block = 1u << (gl_LocalInvocationIndex / (BLOCK_SIZE.x * BLOCK_SIZE.y));
+    const uint my_hits = (gl_LocalInvocationIndex / (BLOCK_SIZE.x * BLOCK_SIZE.y)) * BATCH;  // my block's list
+    // The batch slot this invocation fetches, in the order list_block_hits scans.
+    const uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
@@ -95,20 +100,23 @@ void main() {
         const uint batch_size = min(BATCH, batch_end - range.x);
         const uint batch_start = batch_end - batch_size;
         barrier();  // the previous batch is done with shared memory
-        if (gl_LocalInvocationIndex < batch_size) {
-            const uint g = pc.tile_values.v[batch_start + gl_LocalInvocationIndex];
+        uint touched = 0u;
+        if (slot < batch_size) {
+            const uint g = pc.tile_values.v[batch_start + slot];
             const vec4 mean_depth = pc.means_depth.v[g];
             const vec4 conic_o = pc.conic_opacity.v[g];
-            batch_gaussian[gl_LocalInvocationIndex] = g;
-            batch_mean_depth[gl_LocalInvocationIndex] = mean_depth;
-            batch_conic_opacity[gl_LocalInvocationIndex] = conic_o;
-            batch_color[gl_LocalInvocationIndex] = pc.colors.v[g];
-            batch_blocks[gl_LocalInvocationIndex] = touched_blocks(mean_depth.xy, conic_o, tile_origin);
+            batch_gaussian[slot] = g;
+            batch_mean_depth[slot] = mean_depth;
+            batch_conic_opacity[slot] = conic_o;
+            batch_color[slot] = pc.colors.v[g];
+            touched = subgroup_blocks(touched_blocks(mean_depth.xy, conic_o, tile_origin));
         }
-        barrier();
+        list_block_hits(slot, touched);  // its barriers also order the stores above before the walk
 
-        for (uint j = batch_size; j-- > 0u;) {
-            const bool walked = batch_start + j < last && (batch_blocks[j] & my_block) != 0u;
+        const uint hits = block_hit_count[my_hits / BATCH];
+        for (uint k = hits; k-- > 0u;) {
+            const uint j = block_hits[my_hits + k];
+            const bool walked = batch_start + j < last;
             // Whole subgroups skip splats none of their pixels blended (most, for small splats).
             if (!subgroupAny(walked)) continue;
             vec2 grad_mean = vec2(0.0);

@@ -36,15 +36,11 @@
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
-const uint BLOCKS = TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y);
 // Splats whose alphas a pixel evaluates before compositing them: their loads and exp chains
 // overlap, and the compositing that follows is in list order, exactly as one at a time. H100,
 // snowmiku 13 views: blend 0.169 ms with 2, 0.148 with 4, 0.147 with 8.
 const uint UNROLL = 4;
-// Any subgroup size, down to 1 (lavapipe runs 4 or 8).
-#define WGS_MAX_SUBGROUPS BATCH
-#include "workgroup_scan.glsl"
-WGS_DEFINE_EXCLUSIVE_ADD(uvec2, workgroup_exclusive_add2, wgs_partials2)
+#include "block_hit_lists.glsl"
 
 #if GATHER_STATS
 // alpha * T in 32.32 fixed point: integer atomics make the sums the same every run.
@@ -132,9 +128,6 @@ void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
 shared vec4 batch_mean_depth[BATCH];
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
-// Per block of pixels, the batch's splats that can touch it, in list order (see list_block_hits).
-shared uint block_hits[BLOCKS * BATCH];
-shared uint block_hit_count[BLOCKS];
 #if GATHER_STATS
 shared uint batch_gaussian[BATCH];
 #endif
@@ -157,30 +150,6 @@ float splat_alpha(uint j, vec2 pixel_f) {
     const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
     if (power > 0.0) return 0.0;
     return min(MAX_ALPHA, conic_o.w * exp(power));
-}
-
-// Lists, for each block of pixels, the batch's splats whose alpha >= 1/255 ellipse meets it
-// (touched_blocks), so that a pixel walks only those: a splat is a few pixels wide and meets one
-// or two of the 8 blocks, and testing every splat's mask in every pixel was most of a deep tile's
-// time (lego 800² view 0: a tile of 4,171 splats took 0.47 ms on an H100 even alone on the GPU,
-// ~200 cycles per splat, though its blocks meet 12% of them). The invocation holding batch slot
-// `slot` (scan order) contributes `mask`; positions come from one workgroup scan of all 8 blocks'
-// counts packed in bytes: an exclusive count over at most 255 earlier slots fits a byte, and the
-// scan's arithmetic is modulo 2^32, so carries out of a byte in its partial sums cancel. Only the
-// totals can reach 256; each is taken from the last slot unpacked. Uniform control flow; ends
-// with a barrier.
-void list_block_hits(uint slot, uint mask) {
-    const uvec2 spread = uvec2(((mask & 0x0Fu) * 0x00204081u) & 0x01010101u,
-                               ((mask >> 4u) * 0x00204081u) & 0x01010101u);
-    uvec2 ignored_total;
-    const uvec2 before = workgroup_exclusive_add2(spread, ignored_total);
-    for (uint block = 0u; block < BLOCKS; ++block) {
-        const uint position = (before[block / 4u] >> (8u * (block % 4u))) & 0xFFu;
-        const bool hit = (mask & (1u << block)) != 0u;
-        if (hit) block_hits[block * BATCH + position] = slot;
-        if (slot == BATCH - 1u) block_hit_count[block] = position + (hit ? 1u : 0u);
-    }
-    barrier();
 }
 
 // Composites the batch's splat j behind what the pixel holds, as the reference does.

@@ -8,9 +8,10 @@
 
 // The tile is walked as 8 blocks of 8x4 pixels, 32 consecutive invocations each (one warp on
 // NVIDIA). When a splat enters shared memory, the thread that fetched it marks which blocks its
-// alpha >= 1/255 ellipse meets (tile_culling.glsl); a pixel skips splats that miss its block
-// without evaluating them. Most splats are a few pixels wide and touch one or two blocks, so
-// most of a tile's evaluations go. Skipped splats have alpha < 1/255 there: pixels are unchanged.
+// alpha >= 1/255 ellipse meets (tile_culling.glsl), and each block's splats are listed
+// (block_hit_lists.glsl): a pixel walks its block's list only. Most splats are a few pixels wide
+// and touch one or two blocks, so most of a tile's evaluations go. Skipped splats have alpha
+// < 1/255 there: pixels are unchanged.
 const uvec2 BLOCK_SIZE = uvec2(8, 4);
 const uint BLOCKS_ACROSS = TILE_WIDTH / BLOCK_SIZE.x;
 
