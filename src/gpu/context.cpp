@@ -218,6 +218,7 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
 
     info.int64_atomics = features.features.shaderInt64 && features12.shaderBufferInt64Atomics;
     info.float_atomics = has_float_atomics && float_atomics.shaderBufferFloat32AtomicAdd;
+    info.pipeline_statistics = has_extension(extensions, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
 
     const VkSubgroupFeatureFlags needed_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
                                               VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
@@ -344,6 +345,15 @@ Context::Context(const ContextOptions& options) : impl_(std::make_unique<Impl>()
             extensions.push_back(VK_EXT_SHADER_ATOMIC_FLOAT_EXTENSION_NAME);
             features12.pNext = &float_atomics;
         }
+        VkPhysicalDevicePipelineExecutablePropertiesFeaturesKHR executable_info{
+            VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PIPELINE_EXECUTABLE_PROPERTIES_FEATURES_KHR};
+        if (options.pipeline_statistics && d.info.pipeline_statistics) {
+            extensions.push_back(VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
+            executable_info.pipelineExecutableInfo = VK_TRUE;
+            executable_info.pNext = features.pNext;
+            features.pNext = &executable_info;
+            d.capture_statistics = true;
+        }
 
         VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
         info.pNext = &features;
@@ -425,6 +435,11 @@ bool Context::owns_device() const { return impl_->owned; }
 std::vector<std::string> Context::validation_messages() const {
     std::lock_guard lock(impl_->messages_mutex);
     return impl_->validation_messages;
+}
+
+std::vector<PipelineStatistics> Context::pipeline_statistics() const {
+    std::lock_guard lock(impl_->statistics_mutex);
+    return impl_->statistics;
 }
 
 }  // namespace vksplat::gpu

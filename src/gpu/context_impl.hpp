@@ -24,6 +24,9 @@ struct Context::Impl {
     VolkDeviceTable vk{};
     mutable std::mutex messages_mutex;
     std::vector<std::string> validation_messages;
+    bool capture_statistics = false;  // pipelines are created with their statistics captured
+    mutable std::mutex statistics_mutex;
+    std::vector<PipelineStatistics> statistics;
 };
 
 inline const VolkDeviceTable& vk(const Context& context) { return context.impl().vk; }

@@ -101,6 +101,15 @@ std::string bench_json(const BenchReport& report) {
     j["views"] = views;
     if (!report.by_resolution.empty()) j["by_resolution"] = points_json(report.by_resolution, report.rates);
     if (!report.by_scene_size.empty()) j["by_scene_size"] = points_json(report.by_scene_size, report.rates);
+    if (!report.pipelines.empty()) {
+        nlohmann::json pipelines = nlohmann::json::array();
+        for (const auto& p : report.pipelines) {
+            nlohmann::json values = nlohmann::json::object();
+            for (const auto& [name, value] : p.values) values[name] = value;
+            pipelines.push_back({{"pipeline", p.pipeline}, {"statistics", values}});
+        }
+        j["pipelines"] = pipelines;
+    }
     return j.dump(2) + "\n";
 }
 

@@ -2,7 +2,9 @@
 #include "gpu_test_util.hpp"
 
 #include "gpu/compute_pipeline.hpp"
+#include "gpu/prefix_scan.hpp"
 
+#include <algorithm>
 #include <numeric>
 
 namespace vksplat::gpu {
@@ -38,6 +40,30 @@ TEST(Context, CreatesDeviceWithSubgroupInfo) {
     EXPECT_TRUE(context.validation_messages().empty());
     std::cout << "[ device   ] " << info.name << " (" << info.type_name() << "), subgroup size " << info.subgroup_size
               << " (min " << info.min_subgroup_size << ")\n";
+}
+
+// Asked for, the driver's description of every pipeline built on the context, in order, where the
+// driver offers one (NVIDIA: registers, shared memory, binary size); otherwise nothing, and the
+// device is created without the extension rather than failing.
+TEST(Context, PipelineStatisticsWhereTheDriverOffersThem) {
+    ContextOptions options;
+    options.pipeline_statistics = true;
+    const Context context(options);
+    const PrefixScan scan(context);
+    const auto statistics = context.pipeline_statistics();
+    if (!context.info().pipeline_statistics) {
+        EXPECT_TRUE(statistics.empty());
+        GTEST_SKIP() << context.info().name << " offers no VK_KHR_pipeline_executable_properties";
+    }
+    ASSERT_FALSE(statistics.empty());
+    EXPECT_TRUE(std::any_of(statistics.begin(), statistics.end(),
+                            [](const PipelineStatistics& p) { return p.pipeline == "scan_lookback"; }));
+    for (const auto& p : statistics) EXPECT_FALSE(p.values.empty()) << p.pipeline;
+}
+
+TEST(Context, NoPipelineStatisticsUnlessAskedFor) {
+    const PrefixScan scan(shared_context());
+    EXPECT_TRUE(shared_context().pipeline_statistics().empty());
 }
 
 TEST(Context, SecondContextCoexists) {

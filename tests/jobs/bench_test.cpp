@@ -77,8 +77,11 @@ TEST_F(Bench, ScalingRunsReportEveryPointAsJsonAndCharts) {
     EXPECT_EQ(report.by_scene_size[0].gaussians, 100u);
     EXPECT_EQ(report.by_scene_size[1].gaussians, 1600u);
     report.rates = jobs::DeviceRates{.copy_bytes_per_ms = 1e6, .sort_pairs_per_ms = 1e3};
+    report.pipelines = {{"blend", {{"Register Count", "82"}, {"Shared Memory Size", "22584"}}}};
 
     const nlohmann::json j = nlohmann::json::parse(jobs::bench_json(report));
+    EXPECT_EQ(j["pipelines"][0]["pipeline"], "blend");
+    EXPECT_EQ(j["pipelines"][0]["statistics"]["Register Count"], "82");
     EXPECT_EQ(j["views"].size(), 1u);
     EXPECT_GT(j["views"][0]["visible"].get<int>(), 0);
     EXPECT_GT(j["views"][0]["floor"]["total_ms"].get<double>(), 0.0);

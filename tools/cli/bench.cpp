@@ -19,7 +19,7 @@ struct BenchArgs {
     std::string scene, cameras, views, tiled, json, charts, save_npy;
     int width = 0, height = 0, reps = 50, warmup = 5, sh_degree = 3;
     std::vector<float> background{0, 0, 0};
-    bool half_sh = false, stats = false, floor = false, scaling = false, force = false;
+    bool half_sh = false, stats = false, floor = false, scaling = false, force = false, pipeline_stats = false;
 };
 
 std::array<int, 2> parse_grid(const std::string& text) {
@@ -62,7 +62,12 @@ int run_bench(const BenchArgs& args) {
         for (auto& c : cameras) c = jobs::with_resolution(c, args.width, args.height);
     const auto views = jobs::parse_view_list(args.views, cameras.size());
 
-    gpu::Context context(args.gpu.context_options());
+    gpu::ContextOptions context_options = args.gpu.context_options();
+    context_options.pipeline_statistics = args.pipeline_stats;
+    gpu::Context context(context_options);
+    if (args.pipeline_stats && !context.info().pipeline_statistics)
+        std::fprintf(stderr, "warning: %s does not describe its pipelines (no VK_KHR_pipeline_executable_properties)\n",
+                     context.info().name.c_str());
     Renderer renderer(context);
     const SceneStorage storage{.half_sh = args.half_sh};
     renderer.set_scene(cloud, storage);
@@ -123,6 +128,12 @@ int run_bench(const BenchArgs& args) {
                             static_cast<unsigned long long>(p.gaussians), double(p.bench.width) * p.bench.height,
                             p.bench.median_ms);
     }
+    report.pipelines = context.pipeline_statistics();
+    for (const auto& p : report.pipelines) {
+        std::printf("pipeline %s:", p.pipeline.c_str());
+        for (const auto& [name, value] : p.values) std::printf(" %s = %s;", name.c_str(), value.c_str());
+        std::printf("\n");
+    }
     if (!args.json.empty()) jobs::write_bench_json(args.json, report, mode);
     if (!args.charts.empty())
         for (const auto& path : jobs::write_scaling_charts(args.charts, report, mode))
@@ -149,6 +160,8 @@ void register_bench(CLI::App& app, Action& action) {
     cmd->add_flag("--half-sh", args->half_sh, "keep SH in half precision on the device (half the SH memory)");
     cmd->add_flag("--stats", args->stats,
                   "gather the per-Gaussian blend statistics that pruning scores read (the cost of scoring a view)");
+    cmd->add_flag("--pipeline-stats", args->pipeline_stats,
+                  "print what the driver says of each compiled pipeline (registers, shared memory, ...) where it can");
     cmd->add_flag("--floor", args->floor, "measure copy bandwidth and sort throughput; print each frame's floor");
     cmd->add_flag("--scaling", args->scaling,
                   "also time the first view at 256^2 .. 3840x2160 and the scene thinned and tiled to 1e4 .. 1.2e7");

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vksplat::gpu {
@@ -28,6 +29,9 @@ struct DeviceInfo {
     // 32-bit float atomic add on buffers (VK_EXT_shader_atomic_float): the backward passes add
     // gradients with it; without it they use a compare-and-swap loop (same sums, slower).
     bool float_atomics = false;
+    // The driver can describe its compiled pipelines (VK_KHR_pipeline_executable_properties):
+    // ContextOptions::pipeline_statistics.
+    bool pipeline_statistics = false;
     bool usable = false;                // has what vksplat needs (see unusable_reason)
     std::string unusable_reason;
 
@@ -43,6 +47,17 @@ struct ContextOptions {
     // Device memory vksplat may hold, in bytes; 0: the device's own limit (device_local_budget).
     // A renderer whose frame would not fit renders it in depth-ordered chunks (SceneStorage).
     uint64_t memory_budget = 0;
+    // Keep what the driver says of every pipeline compiled on this context (registers, shared
+    // memory, binary size: the names and values are the driver's own), where it can say
+    // (DeviceInfo::pipeline_statistics); see Context::pipeline_statistics(). For tuning shaders:
+    // a pass's occupancy follows from its registers and shared memory.
+    bool pipeline_statistics = false;
+};
+
+// What the driver says of one compiled pipeline (VK_KHR_pipeline_executable_properties).
+struct PipelineStatistics {
+    std::string pipeline;  // vksplat's name for it ("blend", "radix_scatter", ...)
+    std::vector<std::pair<std::string, std::string>> values;  // statistic and its value as text
 };
 
 // An application's Vulkan objects, lent to vksplat (see Context(const AdoptedDevice&)). The
@@ -103,6 +118,9 @@ public:
     bool owns_device() const;
     // Validation messages (errors and warnings) seen so far; empty unless validation is on.
     std::vector<std::string> validation_messages() const;
+    // Every pipeline compiled on this context so far, in order; empty unless
+    // ContextOptions::pipeline_statistics was set and the driver offers them.
+    std::vector<PipelineStatistics> pipeline_statistics() const;
 
     struct Impl;
     Impl& impl() const { return *impl_; }

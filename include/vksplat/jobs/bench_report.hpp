@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "vksplat/gpu/context.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/bench_scaling.hpp"
 #include "vksplat/jobs/benchmark.hpp"
@@ -21,6 +22,7 @@ struct BenchReport {
     std::optional<DeviceRates> rates;           // with them, every view gets its floor
     BenchmarkResult views;
     std::vector<ScalingPoint> by_resolution, by_scene_size;
+    std::vector<gpu::PipelineStatistics> pipelines;  // the driver's description of each pipeline, if asked for
 };
 
 // What a benchmarked frame could not avoid, from its counters.
