@@ -71,9 +71,8 @@ void main() {
     const CameraParams cam = pc.camera.c;
     const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
     const uvec2 pixel = tile_origin + pixel_in_tile(gl_LocalInvocationIndex);
-    const uint my_hits = (gl_LocalInvocationIndex / (BLOCK_SIZE.x * BLOCK_SIZE.y)) * BATCH;  // my block's list
-    // The batch slot this invocation fetches, in the order list_block_hits scans.
-    const uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
+    const uint my_block = block_of(gl_LocalInvocationIndex);
+    const uint slot = batch_slot();
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
@@ -113,9 +112,9 @@ void main() {
         }
         list_block_hits(slot, touched);  // its barriers also order the stores above before the walk
 
-        const uint hits = block_hit_count[my_hits / BATCH];
+        const uint hits = block_hit_count[my_block];
         for (uint k = hits; k-- > 0u;) {
-            const uint j = block_hits[my_hits + k];
+            const uint j = block_hits[my_block * BATCH + k];
             const bool walked = batch_start + j < last;
             // Whole subgroups skip splats none of their pixels blended (most, for small splats).
             if (!subgroupAny(walked)) continue;

@@ -179,9 +179,8 @@ void main() {
     const CameraParams cam = pc.camera.c;
     const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
     const uvec2 pixel = tile_origin + pixel_in_tile(gl_LocalInvocationIndex);
-    const uint my_hits = (gl_LocalInvocationIndex / (BLOCK_SIZE.x * BLOCK_SIZE.y)) * BATCH;  // my block's list
-    // The batch slot this invocation fetches, in the order list_block_hits scans.
-    const uint slot = gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID;
+    const uint my_block = block_of(gl_LocalInvocationIndex);
+    const uint slot = batch_slot();
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
     const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
@@ -224,12 +223,12 @@ void main() {
 
         // The splats that miss the pixel's block have alpha < 1/255 there: skipping them leaves
         // the pixel exactly as the reference's walk of the whole list does.
-        const uint hits = block_hit_count[my_hits / BATCH];
+        const uint hits = block_hit_count[my_block];
         for (uint k = 0u; !state.done && k < hits; k += UNROLL) {
             uint j[UNROLL];
             float alpha[UNROLL];
             for (uint u = 0u; u < UNROLL; ++u) {
-                j[u] = block_hits[my_hits + min(k + u, hits - 1u)];  // past the end: evaluated, not composited
+                j[u] = block_hits[my_block * BATCH + min(k + u, hits - 1u)];  // past the end: evaluated, not composited
                 alpha[u] = splat_alpha(j[u], pixel_f);
             }
             // A constant trip count, so that the arrays stay in registers.

@@ -10,7 +10,6 @@
 
 #include "tile_blocks.glsl"
 
-const uint BLOCKS = TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y);
 // Any subgroup size, down to 1 (lavapipe runs 4 or 8).
 #define WGS_MAX_SUBGROUPS BATCH
 #include "workgroup_scan.glsl"
@@ -21,7 +20,10 @@ WGS_DEFINE_EXCLUSIVE_ADD(uvec2, workgroup_exclusive_add2, wgs_partials2)
 shared uint block_hits[BLOCKS * BATCH];
 shared uint block_hit_count[BLOCKS];
 
-// Lists the batch's splats per block: the invocation holding batch slot `slot` (scan order) adds
+// The batch slot an invocation fills: list_block_hits scans the slots in this order.
+uint batch_slot() { return gl_SubgroupID * gl_SubgroupSize + gl_SubgroupInvocationID; }
+
+// Lists the batch's splats per block: the invocation holding batch slot `slot` (batch_slot()) adds
 // it to the blocks of `mask`. Positions come from one workgroup scan of all 8 blocks' counts
 // packed in bytes: an exclusive count over at most 255 earlier slots fits a byte, and the
 // scan's arithmetic is modulo 2^32, so carries out of a byte in its partial sums cancel. Only the

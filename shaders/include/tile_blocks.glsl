@@ -14,9 +14,13 @@
 // < 1/255 there: pixels are unchanged.
 const uvec2 BLOCK_SIZE = uvec2(8, 4);
 const uint BLOCKS_ACROSS = TILE_WIDTH / BLOCK_SIZE.x;
+const uint BLOCKS = TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y);
+
+// The block holding an invocation's pixel.
+uint block_of(uint invocation) { return invocation / (BLOCK_SIZE.x * BLOCK_SIZE.y); }
 
 uvec2 pixel_in_tile(uint invocation) {
-    const uint block = invocation / (BLOCK_SIZE.x * BLOCK_SIZE.y);
+    const uint block = block_of(invocation);
     const uint within = invocation % (BLOCK_SIZE.x * BLOCK_SIZE.y);
     return uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE +
            uvec2(within % BLOCK_SIZE.x, within / BLOCK_SIZE.x);
@@ -25,7 +29,7 @@ uvec2 pixel_in_tile(uint invocation) {
 uint touched_blocks(vec2 mean, vec4 conic_opacity, uvec2 tile_origin) {
     const float bound = touch_bound(conic_opacity.w);
     uint mask = 0u;
-    for (uint block = 0u; block < TILE_WIDTH * TILE_HEIGHT / (BLOCK_SIZE.x * BLOCK_SIZE.y); ++block) {
+    for (uint block = 0u; block < BLOCKS; ++block) {
         const uvec2 first = tile_origin + uvec2(block % BLOCKS_ACROSS, block / BLOCKS_ACROSS) * BLOCK_SIZE;
         if (ellipse_meets_box(mean, conic_opacity.xyz, bound, first, BLOCK_SIZE)) mask |= 1u << block;
     }
