@@ -3,7 +3,15 @@
 // 2D with the EWA Jacobian (clamped like the reference), adds the low-pass filter, inverts it to
 // the conic, bounds it by a 3-sigma radius and a tile rectangle, and evaluates the SH colour.
 // Mirrors preprocessCUDA of the reference rasterizer; constants come from constants.glsl.
+//
+// It also writes every Gaussian's depth-sort key: the view depth's bits for a drawn splat, and
+// NOT_DRAWN, which sorts after all of them, for the rest. The depth sort then takes all Gaussians
+// and the drawn ones come out first, in depth order, ties in index order as in the reference;
+// compacting the drawn ones first (a scan and a compaction kernel) cost more, in a frame's chain of
+// dependent kernels, than sorting the culled keys along (tile_binning.cpp).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_arithmetic : require
 
 #include "buffers.glsl"
 #include "constants.glsl"
@@ -22,8 +30,14 @@ layout(push_constant) uniform Push {
     Vec4s colors;         // out: rgb
     UVec2s rects;         // out: tile rectangle, min and max packed as x | y << 16
     Uints tiles_touched;  // out: tiles in the rectangle, 0 when culled
-    Uints visible;        // out: 1 if the splat is drawn, else 0 (input of the compaction scan)
+    Uints visible;        // out: 1 if the splat is drawn, else 0 (the backward pass reads it)
+    Uints depth_keys;     // out: view depth as float bits if drawn, else NOT_DRAWN
+    Uints depth_values;   // out: Gaussian index
+    Uints counters;       // COUNTER_VISIBLE: drawn splats are added to it
 } pc;
+
+// Above the bits of every positive depth (and of every NaN but this one).
+const uint NOT_DRAWN = 0xffffffffu;
 
 mat3 covariance_3d(vec3 scale, vec4 q) {
     const float r = q.x, x = q.y, y = q.z, z = q.w;
@@ -41,6 +55,7 @@ mat3 covariance_3d(vec3 scale, vec4 q) {
 void cull(uint i) {
     pc.tiles_touched.v[i] = 0u;
     pc.visible.v[i] = 0u;
+    pc.depth_keys.v[i] = NOT_DRAWN;
     pc.means_depth.v[i].w = 0.0;
 }
 
@@ -49,11 +64,14 @@ void cull(uint i) {
 void skip_untouched(uint i) {
     pc.tiles_touched.v[i] = 0u;
     pc.visible.v[i] = 0u;
+    pc.depth_keys.v[i] = NOT_DRAWN;
 }
 
 void main() {
     const CameraParams cam = pc.camera.c;
+    uint drawn = 0;
     for (uint i = gl_GlobalInvocationID.x; i < cam.gaussian_count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        pc.depth_values.v[i] = i;
         const vec4 position_opacity = pc.params.v[3u * i];
         const vec3 p = position_opacity.xyz;
         const vec3 view = vec3(dot(cam.view_row0.xyz, p) + cam.view_row0.w,
@@ -134,5 +152,10 @@ void main() {
         pc.rects.v[i] = uvec2(lo.x | (lo.y << 16), hi.x | (hi.y << 16));
         pc.tiles_touched.v[i] = tiles;
         pc.visible.v[i] = 1u;
+        pc.depth_keys.v[i] = min(floatBitsToUint(view.z), NOT_DRAWN - 1u);
+        ++drawn;
     }
+    // One atomic per subgroup: the count does not depend on the order they land in.
+    const uint subgroup_drawn = subgroupAdd(drawn);
+    if (subgroupElect() && subgroup_drawn != 0u) atomicAdd(pc.counters.v[COUNTER_VISIBLE], subgroup_drawn);
 }

@@ -10,16 +10,11 @@ namespace vksplat::render {
 using Address = VkDeviceAddress;
 
 struct PreprocessPush {
-    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, visible;
+    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, visible, depth_keys,
+        depth_values, counters;
 };
 void record_preprocess(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const PreprocessPush& push,
                        uint32_t gaussian_count);
-
-struct CompactVisiblePush {
-    Address camera, visible, offsets, means_depth, depth_keys, depth_values;
-};
-void record_compact_visible(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
-                            const CompactVisiblePush& push, uint32_t gaussian_count);
 
 struct IndirectArgsPush {
     Address count_in, count_out, args;

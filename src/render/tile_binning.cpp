@@ -4,7 +4,6 @@
 #include <string>
 
 #include "render/passes.hpp"
-#include "shaders/compact_visible.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
 #include "shaders/indirect_args.spv.h"
 #include "shaders/preprocess.spv.h"
@@ -24,7 +23,6 @@ void check_entries_sortable(uint32_t needed) {
 
 TileBinning::TileBinning(const gpu::Context& c)
     : preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
-      compact_visible_(c, gpu::spirv_words(compact_visible_spv), sizeof(CompactVisiblePush), {}, "compact_visible"),
       indirect_args_(c, gpu::spirv_words(indirect_args_spv), sizeof(IndirectArgsPush), {}, "indirect_args"),
       emit_tile_entries_(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(EmitTileEntriesPush), {},
                          "emit_tile_entries"),
@@ -47,35 +45,28 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
 
     // Each kernel below waits for the one before (a few microseconds apiece however little they
     // do), so the scans' and sorts' setups run beside earlier kernels as soon as their counts are known.
+    // The depth sort takes every Gaussian, the culled ones keyed to sort last (preprocess.comp):
+    // its count is known from the start.
     record_preprocess(stream, preprocess_,
                       {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.conic_opacity.address(),
-                       f.colors.address(), f.rects.address(), f.tiles_touched.address(), f.visible.address()},
+                       f.colors.address(), f.rects.address(), f.tiles_touched.address(), f.visible.address(),
+                       f.depth_keys.address(), f.depth_values.address(), f.counters.address()},
                       n);
-    scan_.record_setup(stream, counter(kCounterGaussians), *f.scan_scratch);
+    sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterGaussians), *f.sort_scratch);
     stream.barrier();
     stream.mark("preprocess");
 
-    scan_.record(stream, f.visible.address(), f.visible_offsets.address(), counter(kCounterVisible), *f.scan_scratch);
-    stream.barrier();
-    record_compact_visible(stream, compact_visible_,
-                           {f.camera.address(), f.visible.address(), f.visible_offsets.address(),
-                            f.means_depth.address(), f.depth_keys.address(), f.depth_values.address()},
-                           n);
     record_indirect_args(stream, indirect_args_,
                          {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
                           f.gaussian_capacity, 256});
-    sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterVisible), *f.sort_scratch);
     scan_.record_setup(stream, counter(kCounterVisible), *f.scan_scratch);
-    stream.barrier();
-    stream.mark("compact");
-
     sort_.record(stream, f.depth_keys, f.depth_values, 32, *f.sort_scratch);
     stream.barrier();
     stream.mark("depth sort");
 
-    // Tile counts scanned in depth order hand out entry slots front to back: entries are then
-    // emitted already sorted by depth within every tile, and the tile sort only needs to be
-    // stable on the tile bits.
+    // Tile counts scanned in depth order (the drawn splats come first) hand out entry slots front
+    // to back: entries are then emitted already sorted by depth within every tile, and the tile
+    // sort only needs to be stable on the tile bits.
     scan_.record(stream, f.tiles_touched.address(), f.entry_offsets.address(), counter(kCounterEntriesNeeded),
                  *f.scan_scratch, f.depth_values.address());
     stream.barrier();

@@ -1,7 +1,7 @@
 #pragma once
 // TileBinning: every pass of a frame before the blend, from the scene's activated parameters to
-// each tile's depth-ordered list of splats: preprocess, compaction of the visible splats, the
-// depth sort, the tile entries, the stable tile sort and the tile ranges. The renderer and the
+// each tile's depth-ordered list of splats: preprocess (which also keys every Gaussian for the
+// depth sort, the culled ones last), the depth sort, the tile entries, the stable tile sort and the tile ranges. The renderer and the
 // trainer both record it, then blend (and the trainer differentiates) what it leaves in the
 // FrameResources.
 #include <cstdint>
@@ -44,8 +44,7 @@ public:
                 const SceneAddresses& scene) const;
 
 private:
-    gpu::ComputePipeline preprocess_, compact_visible_, indirect_args_, emit_tile_entries_,
-        tile_ranges_;
+    gpu::ComputePipeline preprocess_, indirect_args_, emit_tile_entries_, tile_ranges_;
     gpu::PrefixScan scan_;
     gpu::RadixSort sort_;
 };
