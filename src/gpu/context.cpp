@@ -180,6 +180,8 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
     info.min_subgroup_size = has_size_control && size_control.minSubgroupSize > 0
                                  ? std::min(size_control.minSubgroupSize, subgroup.subgroupSize)
                                  : subgroup.subgroupSize;
+    info.max_workgroup_invocations = basic.limits.maxComputeWorkGroupInvocations;
+    info.max_shared_memory_bytes = basic.limits.maxComputeSharedMemorySize;
 
     // A physical-device query may chain a device extension's structure once the device offers
     // it; the extension need not be enabled on a VkDevice.

@@ -18,10 +18,8 @@ constexpr uint32_t kMaxDigitBits = 8;
 constexpr uint32_t kRadixMax = 1u << kMaxDigitBits;
 constexpr uint32_t kMaxPasses = 4;
 constexpr uint32_t kItemsPerThread = 16;
-// The scatter keeps a count per digit and subgroup in shared memory (256 x subgroups x 4 bytes)
-// beside the staged block (workgroup size x 16 x 4 bytes) and 2 KiB of per-digit offsets and
-// fallback counts: at most 16 subgroups of a 128-invocation workgroup makes that 16 + 8 + 2 KiB,
-// inside the 32 KiB that lavapipe (subgroups of 8) offers. With subgroups of 32 it is 4 + 8 + 2 KiB.
+// Per digit, the scatter keeps a count per subgroup (the ranking loops over them), so subgroups
+// per workgroup are capped.
 constexpr uint32_t kMaxSubgroupsPerGroup = 16;
 // Sorts of at most this many blocks run one sweep per pass: one histogram kernel for all passes,
 // then one scatter kernel per pass that learns the earlier blocks' digit counts by look-back. A
@@ -31,18 +29,35 @@ constexpr uint32_t kMaxSubgroupsPerGroup = 16;
 // faster at 120 blocks (lego's depth sort: 0.118 vs 0.135 ms) and slower at 309 (0.081 vs 0.074).
 constexpr uint32_t kOneSweepMaxBlocks = 192;
 
+// Shared memory of a scatter workgroup (radix_block.glsl, radix_scatter_one_sweep.comp): the staged
+// block, a count per digit and subgroup, and per digit its displacement and fallback count.
+uint32_t scatter_shared_bytes(uint32_t workgroup, uint32_t min_subgroup) {
+    return (workgroup * kItemsPerThread + workgroup / min_subgroup * kRadixMax + 2 * kRadixMax) * 4;
+}
+
 struct Config {
     uint32_t workgroup_size;
     uint32_t max_subgroups;
     uint32_t block_size() const { return workgroup_size * kItemsPerThread; }
 };
 
+// The widest workgroup of 256 or 128 invocations that the device runs, whose subgroups are at
+// most kMaxSubgroupsPerGroup and whose scatter fits in shared memory; never less than one
+// subgroup. Wider workgroups make blocks of more keys for the same work per invocation, so a sort
+// has fewer blocks: a one-sweep pass waits on a look-back chain as long as its block count, and
+// sorts of up to twice the keys run one sweep. On an H200 (subgroups of 32, 26 KiB for 256), 256
+// instead of 128: snowmiku's frame 0.373 -> 0.346 ms, lego 90% dropped 0.220 -> 0.206, bonsai
+// 0.407 -> 0.374 (its 400 k depth keys now one sweep: 0.115 -> 0.077). 128 invocations with 32
+// keys each (the same block) was slower than 128 x 16: the ranking is serial per invocation.
+// lavapipe (subgroups of 8): 128 invocations, 16 subgroups, 26 KiB of its 32.
 Config config_for(const DeviceInfo& info) {
     const uint32_t min_subgroup = std::max(1u, info.min_subgroup_size);
     const uint32_t subgroup = std::max(min_subgroup, info.subgroup_size);
-    // 128 invocations (the most Vulkan guarantees), fewer when subgroups can be tiny, never fewer
-    // than one subgroup.
-    const uint32_t workgroup = std::max(std::min(128u, kMaxSubgroupsPerGroup * min_subgroup), subgroup);
+    uint32_t workgroup = 128;
+    if (256 <= info.max_workgroup_invocations && 256 / min_subgroup <= kMaxSubgroupsPerGroup &&
+        scatter_shared_bytes(256, min_subgroup) <= info.max_shared_memory_bytes)
+        workgroup = 256;
+    workgroup = std::max(std::min(workgroup, kMaxSubgroupsPerGroup * min_subgroup), subgroup);
     return {workgroup, std::max(1u, workgroup / min_subgroup)};
 }
 
@@ -159,6 +174,8 @@ RadixSort::RadixSort(const Context& context, uint32_t lookback_spins) {
 }
 
 RadixSort::~RadixSort() = default;
+
+uint32_t RadixSort::block_size_for(const DeviceInfo& info) { return config_for(info).block_size(); }
 
 uint32_t RadixSort::passes_for(uint32_t key_bits) {
     // Passes of at most 8 bits, an even number of them (so the ping-pong ends where it began).

@@ -75,6 +75,8 @@ public:
 
     // Keys per block of the histogram and scatter kernels on this device.
     uint32_t block_size() const { return block_size_; }
+    // ... on a device of these properties (radix_sort.cpp says how they choose it).
+    static uint32_t block_size_for(const DeviceInfo& info);
 
 private:
     // Pairs a sort of these buffers may hold, and whether it runs one sweep.

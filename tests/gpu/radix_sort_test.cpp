@@ -313,5 +313,27 @@ TEST(RadixSort, RejectsBadKeyWidths) {
     stream.submit_and_wait();
 }
 
+// Blocks are 256 x 16 keys where the device runs 256 invocations whose subgroups are at most 16
+// and whose scatter fits its shared memory, else 128 x 16 (never below one subgroup).
+TEST(RadixSort, BlockSizeFollowsTheDeviceLimits) {
+    DeviceInfo info;
+    info.subgroup_size = info.min_subgroup_size = 32;
+    info.max_workgroup_invocations = 1024;
+    info.max_shared_memory_bytes = 48 * 1024;
+    EXPECT_EQ(RadixSort::block_size_for(info), 4096u);
+    info.max_shared_memory_bytes = 26 * 1024 - 4;  // the 256-wide scatter needs 26 KiB
+    EXPECT_EQ(RadixSort::block_size_for(info), 2048u);
+    info.max_shared_memory_bytes = 48 * 1024;
+    info.max_workgroup_invocations = 128;
+    EXPECT_EQ(RadixSort::block_size_for(info), 2048u);
+    info.max_workgroup_invocations = 1024;
+    info.subgroup_size = info.min_subgroup_size = 8;  // lavapipe: 256 would be 32 subgroups
+    EXPECT_EQ(RadixSort::block_size_for(info), 2048u);
+    info.subgroup_size = 32, info.min_subgroup_size = 4;  // 4-lane subgroups: 16 of them in 64
+    EXPECT_EQ(RadixSort::block_size_for(info), 64u * 16u);
+    info.subgroup_size = info.min_subgroup_size = 64;  // AMD wave64
+    EXPECT_EQ(RadixSort::block_size_for(info), 4096u);
+}
+
 }  // namespace
 }  // namespace vksplat::gpu

@@ -20,6 +20,8 @@ struct DeviceInfo {
     uint32_t api_version = 0;
     uint32_t subgroup_size = 0;         // the default size compute shaders run with
     uint32_t min_subgroup_size = 0;     // smallest size the driver may pick (AMD: 32 vs 64)
+    uint32_t max_workgroup_invocations = 0;  // maxComputeWorkGroupInvocations (Vulkan promises 128)
+    uint32_t max_shared_memory_bytes = 0;    // maxComputeSharedMemorySize (Vulkan promises 16 KiB)
     uint64_t device_local_bytes = 0;    // largest device-local heap
     // What this process may use of that heap: VK_EXT_memory_budget's budget where the driver has
     // it (the heap less what others hold), else the heap's size.
