@@ -8,18 +8,23 @@
 // NOT_DRAWN, which sorts after all of them, for the rest. The depth sort then takes all Gaussians
 // and the drawn ones come out first, in depth order, ties in index order as in the reference;
 // compacting the drawn ones first (a scan and a compaction kernel) cost more, in a frame's chain of
-// dependent kernels, than sorting the culled keys along (tile_binning.cpp).
+// dependent kernels, than sorting the culled keys along (tile_binning.cpp). Where that sort runs
+// one sweep, the keys' digits are counted here too, in place of the sort's histogram kernel.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
 
 #include "buffers.glsl"
 #include "constants.glsl"
 #include "frame.glsl"
 #include "sh.glsl"
 #include "tile_culling.glsl"
+#include "radix_lookback.glsl"
 
 layout(local_size_x = 256) in;
+#include "radix_digit_counts.glsl"
 
 layout(push_constant) uniform Push {
     CameraBuffer camera;
@@ -29,11 +34,18 @@ layout(push_constant) uniform Push {
     Vec4s conic_opacity;  // out: inverse 2D covariance (a, b, c) and opacity
     Vec4s colors;         // out: rgb
     UVec2s rects;         // out: tile rectangle, min and max packed as x | y << 16
-    Uints tiles_touched;  // out: tiles in the rectangle, 0 when culled
-    Uints visible;        // out: 1 if the splat is drawn, else 0 (the backward pass reads it)
+    Uints tiles_touched;  // out: tiles its alpha >= 1/255 ellipse meets, 0 when not drawn
     Uints depth_keys;     // out: view depth as float bits if drawn, else NOT_DRAWN
     Uints depth_values;   // out: Gaussian index
     Uints counters;       // COUNTER_VISIBLE: drawn splats are added to it
+    // Where the depth sort runs one sweep (digit_passes > 0), this kernel does its histogram
+    // kernel's work (radix_digit_counts.glsl): every key's digits are counted into digit_totals and
+    // the sort's look-back words emptied (RadixSort::DigitCounting).
+    Uints digit_totals;
+    Uints lookback;
+    uint digits[MAX_PASSES];
+    uint digit_passes;
+    uint lookback_words;
 } pc;
 
 // Above the bits of every positive depth (and of every NaN but this one).
@@ -52,110 +64,106 @@ mat3 covariance_3d(vec3 scale, vec4 q) {
 
 // Not drawn. The radius is zeroed too: per-Gaussian statistics read "radius > 0" as visible in
 // the reference's sense (in front of the near plane, non-empty 3-sigma rectangle).
-void cull(uint i) {
+uint cull(uint i) {
     pc.tiles_touched.v[i] = 0u;
-    pc.visible.v[i] = 0u;
-    pc.depth_keys.v[i] = NOT_DRAWN;
     pc.means_depth.v[i].w = 0.0;
+    return NOT_DRAWN;
 }
 
 // Visible to the reference, but touching no pixel (tile_culling.glsl): keep the projection for
 // the statistics, draw nothing.
-void skip_untouched(uint i) {
+uint skip_untouched(uint i) {
     pc.tiles_touched.v[i] = 0u;
-    pc.visible.v[i] = 0u;
-    pc.depth_keys.v[i] = NOT_DRAWN;
+    return NOT_DRAWN;
+}
+
+// Writes Gaussian i's splat and returns its depth key.
+uint preprocess(uint i, CameraParams cam) {
+    const vec4 position_opacity = pc.params.v[3u * i];
+    const vec3 p = position_opacity.xyz;
+    const vec3 view = vec3(dot(cam.view_row0.xyz, p) + cam.view_row0.w,
+                           dot(cam.view_row1.xyz, p) + cam.view_row1.w,
+                           dot(cam.view_row2.xyz, p) + cam.view_row2.w);
+    if (view.z <= NEAR_PLANE) return cull(i);
+
+    const mat3 sigma = covariance_3d(pc.params.v[3u * i + 1u].xyz, pc.params.v[3u * i + 2u]);
+
+    // EWA: the Jacobian of the perspective projection at the (clamped) view position. Clamping
+    // the lateral position keeps splats far outside the view from growing without bound.
+    const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
+    const float tx = clamp(view.x / view.z, -cam.jacobian_limits.x, cam.jacobian_limits.y) * view.z;
+    const float ty = clamp(view.y / view.z, -cam.jacobian_limits.z, cam.jacobian_limits.w) * view.z;
+    const mat3 jacobian = transpose(mat3(vec3(fx / view.z, 0.0, -(fx * tx) / (view.z * view.z)),
+                                         vec3(0.0, fy / view.z, -(fy * ty) / (view.z * view.z)),
+                                         vec3(0.0)));
+    const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
+    const mat3 t = jacobian * world_to_view;
+    const mat3 cov = t * sigma * transpose(t);
+    const float a = cov[0][0] + LOW_PASS_FILTER;
+    const float b = cov[1][0];
+    const float c = cov[1][1] + LOW_PASS_FILTER;
+
+    const float det = a * c - b * b;
+    if (det == 0.0) return cull(i);
+    const float det_inv = 1.0 / det;
+    const vec3 conic = vec3(c * det_inv, -b * det_inv, a * det_inv);
+    const float mid = 0.5 * (a + c);
+    const float lambda1 = mid + sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
+    const float lambda2 = mid - sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
+    const float radius = ceil(RADIUS_SIGMAS * sqrt(max(lambda1, lambda2)));
+
+    const vec2 mean = vec2(fx * view.x / view.z + cam.focal_principal.z,
+                           fy * view.y / view.z + cam.focal_principal.w);
+    // getRect: truncation toward zero, clamped to the grid. Clamping before the conversion
+    // keeps far-off splats from overflowing int.
+    const vec2 grid = vec2(cam.size.zw);
+    const vec2 tile = vec2(TILE_WIDTH, TILE_HEIGHT);
+    const uvec2 rect_min = uvec2(max(ivec2(clamp((mean - radius) / tile, vec2(-1.0), grid)), ivec2(0)));
+    const uvec2 rect_max =
+        uvec2(max(ivec2(clamp((mean + radius + tile - 1.0) / tile, vec2(-1.0), grid)), ivec2(0)));
+    if (radius <= 0.0 || any(lessThanEqual(rect_max, rect_min))) return cull(i);
+    pc.means_depth.v[i] = vec4(mean, view.z, radius);
+    // Below 1/255 opacity a splat touches no pixel anywhere (alpha <= opacity).
+    const float bound = touch_bound(position_opacity.w);
+    if (bound < 0.0) return skip_untouched(i);
+    uvec2 lo, hi;
+    touched_rect(mean, vec3(a, b, c), bound, rect_min, rect_max, lo, hi);
+    uint tiles = 0u;
+    for (uint y = lo.y; y < hi.y; ++y) {
+        const uvec2 span = row_tile_span(mean, conic, bound, y, lo.x, hi.x);
+        tiles += span.y - span.x;
+    }
+    if (tiles == 0u) return skip_untouched(i);
+
+    const vec3 direction = normalize(p - cam.position.xyz);
+    const vec3 color = max(eval_sh(pc.sh, cam.sh_half != 0u, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
+                           vec3(0.0));
+
+    pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
+    pc.colors.v[i] = vec4(color, 0.0);
+    pc.rects.v[i] = uvec2(lo.x | (lo.y << 16), hi.x | (hi.y << 16));
+    pc.tiles_touched.v[i] = tiles;
+    return min(floatBitsToUint(view.z), NOT_DRAWN - 1u);
 }
 
 void main() {
     const CameraParams cam = pc.camera.c;
+    const bool count_digits = pc.digit_passes != 0u;  // uniform: the barriers below are allowed
+    if (count_digits) {
+        radix_clear_lookback(pc.lookback, pc.lookback_words);
+        radix_clear_digit_counts();
+        barrier();
+    }
     uint drawn = 0;
     for (uint i = gl_GlobalInvocationID.x; i < cam.gaussian_count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
         pc.depth_values.v[i] = i;
-        const vec4 position_opacity = pc.params.v[3u * i];
-        const vec3 p = position_opacity.xyz;
-        const vec3 view = vec3(dot(cam.view_row0.xyz, p) + cam.view_row0.w,
-                               dot(cam.view_row1.xyz, p) + cam.view_row1.w,
-                               dot(cam.view_row2.xyz, p) + cam.view_row2.w);
-        if (view.z <= NEAR_PLANE) {
-            cull(i);
-            continue;
-        }
-
-        const mat3 sigma = covariance_3d(pc.params.v[3u * i + 1u].xyz, pc.params.v[3u * i + 2u]);
-
-        // EWA: the Jacobian of the perspective projection at the (clamped) view position. Clamping
-        // the lateral position keeps splats far outside the view from growing without bound.
-        const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
-        const float tx = clamp(view.x / view.z, -cam.jacobian_limits.x, cam.jacobian_limits.y) * view.z;
-        const float ty = clamp(view.y / view.z, -cam.jacobian_limits.z, cam.jacobian_limits.w) * view.z;
-        const mat3 jacobian = transpose(mat3(vec3(fx / view.z, 0.0, -(fx * tx) / (view.z * view.z)),
-                                             vec3(0.0, fy / view.z, -(fy * ty) / (view.z * view.z)),
-                                             vec3(0.0)));
-        const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
-        const mat3 t = jacobian * world_to_view;
-        const mat3 cov = t * sigma * transpose(t);
-        const float a = cov[0][0] + LOW_PASS_FILTER;
-        const float b = cov[1][0];
-        const float c = cov[1][1] + LOW_PASS_FILTER;
-
-        const float det = a * c - b * b;
-        if (det == 0.0) {
-            cull(i);
-            continue;
-        }
-        const float det_inv = 1.0 / det;
-        const vec3 conic = vec3(c * det_inv, -b * det_inv, a * det_inv);
-        const float mid = 0.5 * (a + c);
-        const float lambda1 = mid + sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
-        const float lambda2 = mid - sqrt(max(EIGENVALUE_FLOOR, mid * mid - det));
-        const float radius = ceil(RADIUS_SIGMAS * sqrt(max(lambda1, lambda2)));
-
-        const vec2 mean = vec2(fx * view.x / view.z + cam.focal_principal.z,
-                               fy * view.y / view.z + cam.focal_principal.w);
-        // getRect: truncation toward zero, clamped to the grid. Clamping before the conversion
-        // keeps far-off splats from overflowing int.
-        const vec2 grid = vec2(cam.size.zw);
-        const vec2 tile = vec2(TILE_WIDTH, TILE_HEIGHT);
-        const uvec2 rect_min = uvec2(max(ivec2(clamp((mean - radius) / tile, vec2(-1.0), grid)), ivec2(0)));
-        const uvec2 rect_max =
-            uvec2(max(ivec2(clamp((mean + radius + tile - 1.0) / tile, vec2(-1.0), grid)), ivec2(0)));
-        if (radius <= 0.0 || any(lessThanEqual(rect_max, rect_min))) {
-            cull(i);
-            continue;
-        }
-        pc.means_depth.v[i] = vec4(mean, view.z, radius);
-        // Below 1/255 opacity a splat touches no pixel anywhere (alpha <= opacity).
-        const float bound = touch_bound(position_opacity.w);
-        if (bound < 0.0) {
-            skip_untouched(i);
-            continue;
-        }
-        uvec2 lo, hi;
-        touched_rect(mean, vec3(a, b, c), bound, rect_min, rect_max, lo, hi);
-        uint tiles = 0u;
-        for (uint y = lo.y; y < hi.y; ++y) {
-            const uvec2 span = row_tile_span(mean, conic, bound, y, lo.x, hi.x);
-            tiles += span.y - span.x;
-        }
-        if (tiles == 0u) {
-            skip_untouched(i);
-            continue;
-        }
-
-        const vec3 direction = normalize(p - cam.position.xyz);
-        const vec3 color = max(eval_sh(pc.sh, cam.sh_half != 0u, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
-                               vec3(0.0));
-
-        pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
-        pc.colors.v[i] = vec4(color, 0.0);
-        pc.rects.v[i] = uvec2(lo.x | (lo.y << 16), hi.x | (hi.y << 16));
-        pc.tiles_touched.v[i] = tiles;
-        pc.visible.v[i] = 1u;
-        pc.depth_keys.v[i] = min(floatBitsToUint(view.z), NOT_DRAWN - 1u);
-        ++drawn;
+        const uint key = preprocess(i, cam);
+        pc.depth_keys.v[i] = key;
+        if (key != NOT_DRAWN) ++drawn;
+        if (count_digits) radix_count_digits(key, pc.digits, pc.digit_passes);
     }
     // One atomic per subgroup: the count does not depend on the order they land in.
     const uint subgroup_drawn = subgroupAdd(drawn);
     if (subgroupElect() && subgroup_drawn != 0u) atomicAdd(pc.counters.v[COUNTER_VISIBLE], subgroup_drawn);
+    if (count_digits) radix_add_digit_counts(pc.digit_totals, pc.digit_passes);
 }

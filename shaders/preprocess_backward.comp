@@ -21,7 +21,7 @@ layout(local_size_x = 256) in;
 layout(push_constant) uniform Push {
     CameraBuffer camera;
     Floats raw;          // parameters, train_layout.glsl
-    Uints visible;       // per Gaussian: 1 where the frame drew it
+    Uints tiles_touched; // per Gaussian: 0 where the frame did not draw it
     Floats splat_grads;  // SPLAT_GRAD_STRIDE per Gaussian
     Floats grads;        // out: gradients of `raw`, same layout
     Uints counters;      // the frame's counters
@@ -125,7 +125,7 @@ void main() {
     if (gl_GlobalInvocationID.x == 0u && pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity)
         atomicOr(pc.status.v[0], STEP_OVERFLOWED);
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
-        if (pc.visible.v[i] == 0u) {
+        if (pc.tiles_touched.v[i] == 0u) {
             write_zeros(n, i, sh_floats);
             continue;
         }

@@ -1,5 +1,8 @@
 #version 460
 #extension GL_GOOGLE_include_directive : require
+#extension GL_KHR_shader_subgroup_basic : require
+#extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_vote : require
 // RadixSort, a one-sweep sort, step 1 (once, not per pass): counts the digits of every pass over all keys.
 // A key's digit in a later pass does not depend on the order earlier passes leave, so one read of
 // the keys gives every pass's per-digit totals, from which each pass's scatter takes the first
@@ -11,23 +14,23 @@
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;  // keys per invocation and block
+#include "radix_digit_counts.glsl"
 
 layout(push_constant) uniform Push {
     Uints keys;
     Uints lookback;  // [block][pass][digit]
-    Uints control;   // [3] count, [4] blocks, [16 + pass * 256 + digit] totals
+    Uints control;   // [3] count, [4] blocks
+    Uints totals;    // [pass][digit]
     uint digits[MAX_PASSES];  // per pass: first bit | bit count << 8
     uint passes;
 } pc;
-
-shared uint counts[MAX_PASSES * RADIX_MAX];
 
 void main() {
     const uint count = pc.control.v[3];
     const uint blocks = pc.control.v[4];
     const uint size = gl_WorkGroupSize.x;
     const uint local = gl_LocalInvocationIndex;
-    for (uint i = local; i < MAX_PASSES * RADIX_MAX; i += size) counts[i] = 0;
+    radix_clear_digit_counts();
     barrier();
     for (uint block = gl_WorkGroupID.x; block < blocks; block += gl_NumWorkGroups.x) {
         for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
@@ -41,14 +44,8 @@ void main() {
         }
         for (uint i = 0; i < ITEMS; ++i) {
             if (start + i * size + local >= count) break;
-            const uint key = keys[i];
-            for (uint pass = 0; pass < pc.passes; ++pass) {
-                const uint shift = pc.digits[pass] & 0xffu, bits = pc.digits[pass] >> 8;
-                atomicAdd(counts[pass * RADIX_MAX + ((key >> shift) & ((1u << bits) - 1u))], 1u);
-            }
+            radix_count_digits(keys[i], pc.digits, pc.passes);
         }
     }
-    barrier();
-    for (uint i = local; i < pc.passes * RADIX_MAX; i += size)
-        if (counts[i] != 0u) atomicAdd(pc.control.v[RADIX_TOTALS + i], counts[i]);
+    radix_add_digit_counts(pc.totals, pc.passes);
 }

@@ -1,8 +1,10 @@
 #include "gpu/radix_sort.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "shaders/radix_block_histogram.spv.h"
 #include "shaders/radix_histogram.spv.h"
@@ -16,7 +18,7 @@ namespace {
 
 constexpr uint32_t kMaxDigitBits = 8;
 constexpr uint32_t kRadixMax = 1u << kMaxDigitBits;
-constexpr uint32_t kMaxPasses = 4;
+constexpr uint32_t kMaxPasses = RadixSort::max_passes;
 constexpr uint32_t kItemsPerThread = 16;
 // Per digit, the scatter keeps a count per subgroup (the ranking loops over them), so subgroups
 // per workgroup are capped.
@@ -76,6 +78,7 @@ struct HistogramPush {
     VkDeviceAddress keys;
     VkDeviceAddress lookback;
     VkDeviceAddress control;
+    VkDeviceAddress totals;
     uint32_t digits[kMaxPasses];  // per pass: first bit | bit count << 8
     uint32_t passes;
 };
@@ -98,7 +101,9 @@ struct ScanHistogramPush {
 
 // Control buffer: 16 words written by radix_setup, then per-pass digit totals.
 constexpr VkDeviceSize kTotalsOffset = 64;
-constexpr VkDeviceSize kControlBytes = kTotalsOffset + VkDeviceSize(kMaxPasses) * kRadixMax * 4;
+constexpr VkDeviceSize kTotalsBytes = VkDeviceSize(kMaxPasses) * kRadixMax * 4;
+constexpr VkDeviceSize kControlBytes = kTotalsOffset + kTotalsBytes;
+constexpr uint32_t kMaxGroupsX = 65535;  // MAX_GROUPS_X of buffers.glsl
 
 struct OneSweepScatterPush {
     VkDeviceAddress keys_in;
@@ -199,27 +204,64 @@ void RadixSort::record_setup(CommandStream& stream, const Buffer& keys, const Bu
                     1);
 }
 
-void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& values, uint32_t key_bits,
-                       Scratch& scratch) const {
+RadixSort::DigitCounting RadixSort::digits_for(uint32_t key_bits) {
     if (key_bits < 1 || key_bits > 32)
         throw std::invalid_argument("RadixSort: key_bits must be 1..32, not " + std::to_string(key_bits));
     // Bits spread as evenly as possible over the passes: the first `extra` passes take base + 1
     // bits, the rest base bits (possibly 0: a stable copy).
-    const uint32_t passes = passes_for(key_bits);
-    const uint32_t base = key_bits / passes;
-    const uint32_t extra = key_bits % passes;
+    DigitCounting layout;
+    layout.passes = passes_for(key_bits);
+    const uint32_t base = key_bits / layout.passes;
+    const uint32_t extra = key_bits % layout.passes;
+    for (uint32_t pass = 0, shift = 0; pass < layout.passes; ++pass) {
+        const uint32_t bits = base + (pass < extra ? 1 : 0);
+        layout.digits[pass] = shift | bits << 8;
+        shift += bits;
+    }
+    return layout;
+}
+
+std::optional<RadixSort::DigitCounting> RadixSort::record_host_setup(CommandStream& stream, const Buffer& keys,
+                                                                     const Buffer& values, uint32_t count,
+                                                                     uint32_t key_bits, Scratch& scratch) const {
+    DigitCounting counting = digits_for(key_bits);
+    const uint64_t held = capacity(keys, values, scratch);
+    if (!one_sweep(held)) return std::nullopt;
+    // What radix_setup would write, the control words and zero totals, in one buffer update (each
+    // transfer command at a frame's start costs about as much as a small kernel); the producer
+    // empties the look-back words, as the histogram kernel would.
+    const uint32_t clamped = static_cast<uint32_t>(std::min<uint64_t>(count, held));
+    const uint32_t blocks = blocks_for(clamped, block_size_);
+    std::vector<uint32_t> control(kControlBytes / 4, 0);
+    control[0] = std::min(blocks, kMaxGroupsX);
+    control[1] = control[2] = 1;
+    control[3] = clamped;
+    control[4] = blocks;
+    stream.update(scratch.control_, control.data(), kControlBytes);
+    counting.totals = scratch.control_.address() + kTotalsOffset;
+    counting.lookback = scratch.block_words_.address();
+    counting.lookback_words = blocks * kMaxPasses * kRadixMax;
+    return counting;
+}
+
+void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& values, uint32_t key_bits,
+                       Scratch& scratch, bool digits_counted) const {
+    const DigitCounting layout = digits_for(key_bits);
+    const uint32_t passes = layout.passes;
     uint32_t shifts[kMaxPasses] = {}, bits[kMaxPasses] = {};
-    for (uint32_t pass = 0, shift = 0; pass < passes; shift += bits[pass], ++pass) {
-        shifts[pass] = shift;
-        bits[pass] = base + (pass < extra ? 1 : 0);
+    for (uint32_t pass = 0; pass < passes; ++pass) {
+        shifts[pass] = layout.digits[pass] & 0xffu;
+        bits[pass] = layout.digits[pass] >> 8;
     }
 
     const bool sweep = one_sweep(capacity(keys, values, scratch));
+    if (digits_counted && !sweep)
+        throw std::logic_error("RadixSort: digits counted by their producer, but the sort does not run one sweep");
     const VkDeviceAddress control = scratch.control_.address();
     const VkDeviceAddress block_words = scratch.block_words_.address();
-    if (sweep) {
-        HistogramPush histogram{keys.address(), block_words, control, {}, passes};
-        for (uint32_t pass = 0; pass < passes; ++pass) histogram.digits[pass] = shifts[pass] | bits[pass] << 8;
+    if (sweep && !digits_counted) {
+        HistogramPush histogram{keys.address(), block_words, control, control + kTotalsOffset, {}, passes};
+        for (uint32_t pass = 0; pass < passes; ++pass) histogram.digits[pass] = layout.digits[pass];
         stream.dispatch_indirect(*histogram_, histogram, scratch.control_, 0);
         stream.barrier();
     }

@@ -13,6 +13,7 @@
 // every driver we know of runs them for such workgroups).
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
@@ -52,6 +53,30 @@ public:
         Buffer control_;    // [0..2] DispatchArgs, [3] count, [4] blocks; per-pass digit totals
     };
 
+    // Digit passes of at most 8 bits: keys of up to 32 bits.
+    static constexpr uint32_t max_passes = 4;
+
+    // What a kernel that writes a sort's keys needs to stand in for the histogram kernel
+    // (shaders/include/radix_digit_counts.glsl): count the keys' digits into the per-pass totals
+    // and empty the look-back words.
+    struct DigitCounting {
+        VkDeviceAddress totals = 0;         // [pass][digit], zeroed by record_host_setup
+        VkDeviceAddress lookback = 0;       // lookback_words words to set to LOOKBACK_EMPTY
+        uint32_t digits[max_passes] = {};  // per pass: first bit | bit count << 8
+        uint32_t passes = 0;
+        uint32_t lookback_words = 0;
+    };
+
+    // Where the count of pairs is known when recording: records the setup of a sort of
+    // min(count, capacity) pairs as buffer writes (no kernel), to be made visible by the caller's
+    // barrier before the kernel that writes the keys. When the sort runs one sweep, returns how
+    // that kernel counts the keys' digits; then record(..., digits_counted = true) skips the
+    // histogram kernel, and every key must be counted exactly once. Otherwise records nothing and
+    // returns nothing: the sort is set up by record_setup. Each kernel dropped from a frame's chain
+    // saves its launch and latency (a few microseconds).
+    std::optional<DigitCounting> record_host_setup(CommandStream& stream, const Buffer& keys, const Buffer& values,
+                                                   uint32_t count, uint32_t key_bits, Scratch& scratch) const;
+
     // Records the setup of a sort of `count` pairs, where count is read by the GPU from
     // count_address (clamped to the capacity of keys, values and scratch). The count must be
     // written and made visible before (a barrier after its producer); record() follows after a
@@ -61,14 +86,15 @@ public:
     void record_setup(CommandStream& stream, const Buffer& keys, const Buffer& values, VkDeviceAddress count_address,
                       Scratch& scratch) const;
 
-    // Stable LSD sort of the (key, value) uint32 pairs set up by record_setup, by the low key_bits
-    // (1..32) bits of the keys. Elements past count are left untouched. The result ends in `keys`
+    // Stable LSD sort of the (key, value) uint32 pairs set up by record_setup or record_host_setup
+    // (digits_counted: the keys' producer counted their digits as that returned; same key_bits),
+    // by the low key_bits (1..32) bits of the keys. Elements past count are left untouched. The result ends in `keys`
     // and `values` (the number of passes is made even, with the bits spread over them, so the
     // ping-pong ends where it began). The caller records a barrier before (for its inputs and the
     // setup); this records barriers between its own kernels and ends with its writes NOT yet made
     // visible (caller records barrier()).
     void record(CommandStream& stream, const Buffer& keys, const Buffer& values, uint32_t key_bits,
-                Scratch& scratch) const;
+                Scratch& scratch, bool digits_counted = false) const;
 
     // Digit passes a sort by key_bits (1..32) bits makes: what its time scales with.
     static uint32_t passes_for(uint32_t key_bits);
@@ -79,6 +105,8 @@ public:
     static uint32_t block_size_for(const DeviceInfo& info);
 
 private:
+    // The digits of each pass of a sort by key_bits bits (totals left 0).
+    static DigitCounting digits_for(uint32_t key_bits);
     // Pairs a sort of these buffers may hold, and whether it runs one sweep.
     static uint64_t capacity(const Buffer& keys, const Buffer& values, const Scratch& scratch);
     bool one_sweep(uint64_t capacity) const;

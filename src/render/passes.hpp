@@ -4,14 +4,16 @@
 #include <cstdint>
 
 #include "gpu/command_stream.hpp"
+#include "gpu/radix_sort.hpp"
 
 namespace vksplat::render {
 
 using Address = VkDeviceAddress;
 
 struct PreprocessPush {
-    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, visible, depth_keys,
+    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, depth_keys,
         depth_values, counters;
+    gpu::RadixSort::DigitCounting depth_digits;  // passes 0: the depth sort counts its own digits
 };
 void record_preprocess(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const PreprocessPush& push,
                        uint32_t gaussian_count);

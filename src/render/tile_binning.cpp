@@ -41,18 +41,22 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     initial_counters[kCounterGaussians] = n;
     stream.update(f.counters, initial_counters, sizeof(initial_counters));
     stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
+    // The depth sort takes every Gaussian, the culled ones keyed to sort last (preprocess.comp):
+    // its count is known from the start, so where it runs one sweep its setup is written here and
+    // preprocess counts the keys' digits.
+    const auto depth_digits = sort_.record_host_setup(stream, f.depth_keys, f.depth_values, n, 32, *f.sort_scratch);
     stream.barrier();
 
     // Each kernel below waits for the one before (a few microseconds apiece however little they
     // do), so the scans' and sorts' setups run beside earlier kernels as soon as their counts are known.
-    // The depth sort takes every Gaussian, the culled ones keyed to sort last (preprocess.comp):
-    // its count is known from the start.
     record_preprocess(stream, preprocess_,
                       {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.conic_opacity.address(),
-                       f.colors.address(), f.rects.address(), f.tiles_touched.address(), f.visible.address(),
-                       f.depth_keys.address(), f.depth_values.address(), f.counters.address()},
+                       f.colors.address(), f.rects.address(), f.tiles_touched.address(),
+                       f.depth_keys.address(), f.depth_values.address(), f.counters.address(),
+                       depth_digits.value_or(gpu::RadixSort::DigitCounting{})},
                       n);
-    sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterGaussians), *f.sort_scratch);
+    if (!depth_digits)
+        sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterGaussians), *f.sort_scratch);
     stream.barrier();
     stream.mark("preprocess");
 
@@ -60,7 +64,7 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
                          {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
                           f.gaussian_capacity, 256});
     scan_.record_setup(stream, counter(kCounterVisible), *f.scan_scratch);
-    sort_.record(stream, f.depth_keys, f.depth_values, 32, *f.sort_scratch);
+    sort_.record(stream, f.depth_keys, f.depth_values, 32, *f.sort_scratch, depth_digits.has_value());
     stream.barrier();
     stream.mark("depth sort");
 

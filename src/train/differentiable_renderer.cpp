@@ -99,7 +99,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     stream.barrier();
     stream.mark("blend backward");
     record_preprocess_backward(stream, preprocess_backward_,
-                               {f.camera.address(), scene.params.address(), f.visible.address(),
+                               {f.camera.address(), scene.params.address(), f.tiles_touched.address(),
                                 splat_grads_.address(), scene.grads.address(), f.counters.address(), status_.address(),
                                 scene.densify.address(), f.means_depth.address()},
                                scene.layout.count);

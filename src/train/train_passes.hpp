@@ -32,7 +32,7 @@ void record_blend_backward(gpu::CommandStream& stream, const gpu::ComputePipelin
                            const BlendBackwardPush& push, uint32_t tiles_x, uint32_t tiles_y);
 
 struct PreprocessBackwardPush {
-    Address camera, raw, visible, splat_grads, grads, counters, status, densify, means_depth;
+    Address camera, raw, tiles_touched, splat_grads, grads, counters, status, densify, means_depth;
 };
 void record_preprocess_backward(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                                 const PreprocessBackwardPush& push, uint32_t gaussian_count);

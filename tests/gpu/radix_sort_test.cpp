@@ -313,6 +313,35 @@ TEST(RadixSort, RejectsBadKeyWidths) {
     stream.submit_and_wait();
 }
 
+// A sort whose count is known when recording: one sweep gets its setup from the host and tells
+// the keys' producer which digits to count (the renderer's preprocess does, checked by the render
+// tests against the CPU reference); a larger one is left to record_setup.
+TEST(RadixSort, HostSetupOnlyForOneSweepSorts) {
+    const Context& context = shared_context();
+    const uint32_t small = 1000, large = 192 * shared_sort().block_size() + 1;
+    Buffer small_keys = test::device_buffer(context, small, "keys"), small_values = test::device_buffer(context, small, "values");
+    Buffer large_keys = test::device_buffer(context, large, "keys"), large_values = test::device_buffer(context, large, "values");
+    RadixSort::Scratch small_scratch(context, small), large_scratch(context, large);
+    CommandStream stream(context);
+    stream.begin();
+    const auto depth = shared_sort().record_host_setup(stream, small_keys, small_values, small, 32, small_scratch);
+    ASSERT_TRUE(depth.has_value());
+    EXPECT_EQ(depth->passes, 4u);
+    for (uint32_t pass = 0; pass < 4; ++pass) EXPECT_EQ(depth->digits[pass], pass * 8 | 8u << 8);
+    EXPECT_NE(depth->totals, 0u);
+    EXPECT_NE(depth->lookback, 0u);
+    EXPECT_EQ(depth->lookback_words, 4u * 256u);  // one block: its words of every pass
+    stream.barrier();  // the same scratch is set up again
+    const auto tiles = shared_sort().record_host_setup(stream, small_keys, small_values, small, 12, small_scratch);
+    ASSERT_TRUE(tiles.has_value());
+    EXPECT_EQ(tiles->passes, 2u);
+    EXPECT_EQ(tiles->digits[0], 0u | 6u << 8);
+    EXPECT_EQ(tiles->digits[1], 6u | 6u << 8);
+    EXPECT_FALSE(shared_sort().record_host_setup(stream, large_keys, large_values, large, 32, large_scratch));
+    EXPECT_THROW(shared_sort().record(stream, large_keys, large_values, 32, large_scratch, true), std::logic_error);
+    stream.submit_and_wait();
+}
+
 // Blocks are 256 x 16 keys where the device runs 256 invocations whose subgroups are at most 16
 // and whose scatter fits its shared memory, else 128 x 16 (never below one subgroup).
 TEST(RadixSort, BlockSizeFollowsTheDeviceLimits) {
