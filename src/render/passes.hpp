@@ -32,6 +32,12 @@ struct EmitTileEntriesPush {
 void record_emit_tile_entries(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                               const EmitTileEntriesPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
 
+struct ClearWordsPush {
+    Address words;
+    uint32_t count, value;
+};
+void record_clear_words(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const ClearWordsPush& push);
+
 struct TileRangesPush {
     Address counters, tile_keys, ranges;
     uint32_t tile_count;

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "render/passes.hpp"
+#include "shaders/clear_words.spv.h"
 #include "shaders/emit_tile_entries.spv.h"
 #include "shaders/indirect_args.spv.h"
 #include "shaders/preprocess.spv.h"
@@ -22,7 +23,8 @@ void check_entries_sortable(uint32_t needed) {
 }
 
 TileBinning::TileBinning(const gpu::Context& c)
-    : preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
+    : clear_words_(c, gpu::spirv_words(clear_words_spv), sizeof(ClearWordsPush), {}, "clear_words"),
+      preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
       indirect_args_(c, gpu::spirv_words(indirect_args_spv), sizeof(IndirectArgsPush), {}, "indirect_args"),
       emit_tile_entries_(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(EmitTileEntriesPush), {},
                          "emit_tile_entries"),
@@ -40,7 +42,6 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     uint32_t initial_counters[kCounterCount] = {};
     initial_counters[kCounterGaussians] = n;
     stream.update(f.counters, initial_counters, sizeof(initial_counters));
-    stream.fill(f.ranges, 0, 0, uint64_t(tiles_x) * tiles_y * 8);
     // The depth sort takes every Gaussian, the culled ones keyed to sort last (preprocess.comp):
     // its count is known from the start, so where it runs one sweep its setup is written here and
     // preprocess counts the keys' digits.
@@ -55,6 +56,8 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
                        f.depth_keys.address(), f.depth_values.address(), f.counters.address(),
                        depth_digits.value_or(gpu::RadixSort::DigitCounting{})},
                       n);
+    // Tiles that get no entries keep an empty range (tile_ranges.comp).
+    record_clear_words(stream, clear_words_, {f.ranges.address(), 2 * tiles_x * tiles_y, 0});
     if (!depth_digits)
         sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterGaussians), *f.sort_scratch);
     stream.barrier();

@@ -44,7 +44,7 @@ public:
                 const SceneAddresses& scene) const;
 
 private:
-    gpu::ComputePipeline preprocess_, indirect_args_, emit_tile_entries_, tile_ranges_;
+    gpu::ComputePipeline clear_words_, preprocess_, indirect_args_, emit_tile_entries_, tile_ranges_;
     gpu::PrefixScan scan_;
     gpu::RadixSort sort_;
 };
