@@ -1,7 +1,7 @@
 #version 460
 // Sets `count` words to `value`. A buffer clear as a kernel runs beside the kernel after the same
-// barrier; vkCmdFillBuffer at a frame's start added about 3 us to the frame's chain on an H200
-// (each transfer command there costs about as much as a small kernel).
+// barrier; vkCmdFillBuffer at a frame's start added about 2-3 us to the frame's chain on an H200
+// (small vkCmdUpdateBuffer uploads did not).
 #extension GL_GOOGLE_include_directive : require
 
 #include "buffers.glsl"
