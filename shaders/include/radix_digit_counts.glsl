@@ -8,16 +8,16 @@
 // Use: radix_clear_digit_counts(), barrier(), radix_count_digits() per key, then in uniform
 // control flow radix_add_digit_counts() (which starts with the barrier it needs). The including
 // shader enables the subgroup basic, vote and ballot extensions, includes buffers.glsl and
-// radix_lookback.glsl, and includes this after its local_size
-// layout: before it, glslang takes gl_WorkGroupSize to be 1 and every invocation would add the
-// whole workgroup's counts.
+// radix_lookback.glsl, and includes this after its local_size layout: before it, glslang takes
+// gl_WorkGroupSize to be 1 and every invocation would add the whole workgroup's counts.
 #ifndef VKSPLAT_RADIX_DIGIT_COUNTS_GLSL
 #define VKSPLAT_RADIX_DIGIT_COUNTS_GLSL
 
 shared uint radix_digit_counts[MAX_PASSES * RADIX_MAX];
 
 void radix_clear_digit_counts() {
-    for (uint i = gl_LocalInvocationIndex; i < MAX_PASSES * RADIX_MAX; i += gl_WorkGroupSize.x) radix_digit_counts[i] = 0;
+    for (uint i = gl_LocalInvocationIndex; i < MAX_PASSES * RADIX_MAX; i += gl_WorkGroupSize.x)
+        radix_digit_counts[i] = 0;
 }
 
 // digits: per pass, first bit | bit count << 8. A digit the whole subgroup shares (the high

@@ -319,8 +319,10 @@ TEST(RadixSort, RejectsBadKeyWidths) {
 TEST(RadixSort, HostSetupOnlyForOneSweepSorts) {
     const Context& context = shared_context();
     const uint32_t small = 1000, large = 192 * shared_sort().block_size() + 1;
-    Buffer small_keys = test::device_buffer(context, small, "keys"), small_values = test::device_buffer(context, small, "values");
-    Buffer large_keys = test::device_buffer(context, large, "keys"), large_values = test::device_buffer(context, large, "values");
+    Buffer small_keys = test::device_buffer(context, small, "keys");
+    Buffer small_values = test::device_buffer(context, small, "values");
+    Buffer large_keys = test::device_buffer(context, large, "keys");
+    Buffer large_values = test::device_buffer(context, large, "values");
     RadixSort::Scratch small_scratch(context, small), large_scratch(context, large);
     CommandStream stream(context);
     stream.begin();
