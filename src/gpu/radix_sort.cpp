@@ -1,10 +1,10 @@
 #include "gpu/radix_sort.hpp"
 
 #include <algorithm>
+#include <array>
 #include <optional>
 #include <stdexcept>
 #include <string>
-#include <vector>
 
 #include "shaders/radix_block_histogram.spv.h"
 #include "shaders/radix_histogram.spv.h"
@@ -233,7 +233,7 @@ std::optional<RadixSort::DigitCounting> RadixSort::record_host_setup(CommandStre
     // kernel would.
     const uint32_t clamped = static_cast<uint32_t>(std::min<uint64_t>(count, held));
     const uint32_t blocks = blocks_for(clamped, block_size_);
-    std::vector<uint32_t> control(kControlBytes / 4, 0);
+    std::array<uint32_t, kControlBytes / 4> control{};
     control[0] = std::min(blocks, kMaxGroupsX);
     control[1] = control[2] = 1;
     control[3] = clamped;

@@ -88,11 +88,11 @@ public:
 
     // Stable LSD sort of the (key, value) uint32 pairs set up by record_setup or record_host_setup
     // (digits_counted: the keys' producer counted their digits as that returned; same key_bits),
-    // by the low key_bits (1..32) bits of the keys. Elements past count are left untouched. The result ends in `keys`
-    // and `values` (the number of passes is made even, with the bits spread over them, so the
-    // ping-pong ends where it began). The caller records a barrier before (for its inputs and the
-    // setup); this records barriers between its own kernels and ends with its writes NOT yet made
-    // visible (caller records barrier()).
+    // by the low key_bits (1..32) bits of the keys. Elements past count are left untouched. The
+    // result ends in `keys` and `values` (the number of passes is made even, with the bits spread
+    // over them, so the ping-pong ends where it began). The caller records a barrier before (for
+    // its inputs and the setup); this records barriers between its own kernels and ends with its
+    // writes NOT yet made visible (caller records barrier()).
     void record(CommandStream& stream, const Buffer& keys, const Buffer& values, uint32_t key_bits,
                 Scratch& scratch, bool digits_counted = false) const;
 
