@@ -7,6 +7,7 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 
 #include "buffers.glsl"
+#include "footprint.glsl"
 #include "frame.glsl"
 #include "tile_culling.glsl"
 
@@ -16,29 +17,25 @@ layout(push_constant) uniform Push {
     CameraBuffer camera;
     Uints counters;
     Uints depth_values;   // Gaussian indices in depth order
-    Uints entry_offsets;  // exclusive scan of the depth-ordered tile counts
-    UVec2s rects;
-    Vec4s means_depth;
-    Vec4s conic_opacity;
-    Uints tiles_touched;
+    Uints entry_offsets;  // exclusive scan of the depth-ordered tile counts; the total in COUNTER_ENTRIES_NEEDED
+    Footprints footprints;
     Uints tile_keys;      // out: tile index (row-major)
     Uints tile_values;    // out: Gaussian index
 } pc;
 
-// Where splat k of the depth order has its entries: its Gaussian, tile rectangle [lo, hi) and
-// positions [first, end), end clamped to the frame's capacity.
+// Where splat k of the depth order has its entries: its Gaussian, footprint and positions
+// [first, end), end clamped to the frame's capacity. The end is the next splat's start (read in
+// order, where the splat's own tile count would be one more random read).
 struct SplatEntries {
     uint gaussian;
-    uvec2 lo, hi;
+    Footprint footprint;
     uint first, end;
 };
 
-SplatEntries splat_entries(uint k, uint capacity) {
+SplatEntries splat_entries(uint k, uint count, uint capacity) {
     const uint gaussian = pc.depth_values.v[k];
-    const uvec2 packed = pc.rects.v[gaussian];
-    const uint first = pc.entry_offsets.v[k];
-    return SplatEntries(gaussian, uvec2(packed.x & 0xffffu, packed.x >> 16), uvec2(packed.y & 0xffffu, packed.y >> 16),
-                        first, min(first + pc.tiles_touched.v[gaussian], capacity));
+    const uint end = k + 1u < count ? pc.entry_offsets.v[k + 1u] : pc.counters.v[COUNTER_ENTRIES_NEEDED];
+    return SplatEntries(gaussian, pc.footprints.v[gaussian], pc.entry_offsets.v[k], min(end, capacity));
 }
 
 // Writes the splat's entries from position first on, row by row and left to right in each row,
@@ -47,13 +44,15 @@ SplatEntries splat_entries(uint k, uint capacity) {
 // control flow with the same splat, and `lane` is gl_SubgroupInvocationID).
 uint emit_rows(SplatEntries e, uint tiles_x, uint lane, uint row_step) {
     const uint gaussian = e.gaussian;
-    const vec2 mean = pc.means_depth.v[gaussian].xy;
-    const vec4 conic_o = pc.conic_opacity.v[gaussian];
+    const vec2 mean = footprint_mean(e.footprint);
+    const vec4 conic_o = footprint_conic_opacity(e.footprint);
     const float bound = touch_bound(conic_o.w);
+    uvec2 lo, hi;
+    footprint_rect(e.footprint, lo, hi);
     uint slot = e.first;
-    for (uint row0 = e.lo.y; row0 < e.hi.y && slot < e.end; row0 += row_step) {
+    for (uint row0 = lo.y; row0 < hi.y && slot < e.end; row0 += row_step) {
         const uint y = row0 + lane;
-        const uvec2 span = y < e.hi.y ? row_tile_span(mean, conic_o.xyz, bound, y, e.lo.x, e.hi.x) : uvec2(0u);
+        const uvec2 span = y < hi.y ? row_tile_span(mean, conic_o.xyz, bound, y, lo.x, hi.x) : uvec2(0u);
         const uint tiles = span.y - span.x;
         uint at = slot + (row_step == 1u ? 0u : subgroupExclusiveAdd(tiles));
         for (uint x = span.x; x < span.y && at < e.end; ++x, ++at) {
@@ -79,8 +78,8 @@ void main() {
     // subgroup can share the large splats' work.
     for (uint base = gl_WorkGroupID.x * gl_WorkGroupSize.x; base < count; base += stride) {
         const uint k = base + gl_LocalInvocationIndex;
-        SplatEntries e = SplatEntries(0u, uvec2(0u), uvec2(0u), 0u, 0u);
-        if (k < count) e = splat_entries(k, capacity);
+        SplatEntries e = SplatEntries(0u, Footprint(vec4(0.0), uvec4(0u)), 0u, 0u);
+        if (k < count) e = splat_entries(k, count, capacity);
         const bool large = e.end > e.first + SHARED_EMIT_TILES;
         uint slot = e.first;
         if (k < count && !large) slot = emit_rows(e, tiles_x, 0u, 1u);
@@ -88,7 +87,7 @@ void main() {
         bool waiting = large;
         while (subgroupBallotBitCount(subgroupBallot(waiting)) != 0u) {
             const uint next = subgroupMin(waiting ? k : 0xffffffffu);
-            const uint emitted = emit_rows(splat_entries(next, capacity), tiles_x, gl_SubgroupInvocationID, gl_SubgroupSize);
+            const uint emitted = emit_rows(splat_entries(next, count, capacity), tiles_x, gl_SubgroupInvocationID, gl_SubgroupSize);
             if (waiting && k == next) {
                 slot = emitted;
                 waiting = false;

@@ -18,6 +18,7 @@
 
 #include "buffers.glsl"
 #include "constants.glsl"
+#include "footprint.glsl"
 #include "frame.glsl"
 #include "sh.glsl"
 #include "tile_culling.glsl"
@@ -31,9 +32,8 @@ layout(push_constant) uniform Push {
     Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
     Floats sh;            // [Gaussian][coefficient][rgb], floats or packed halves (cam.sh_half)
     Vec4s means_depth;    // out: pixel position (x, y), view depth, radius in pixels
-    Vec4s conic_opacity;  // out: inverse 2D covariance (a, b, c) and opacity
-    Vec4s colors;         // out: rgb
-    UVec2s rects;         // out: tile rectangle, min and max packed as x | y << 16
+    Footprints footprints;  // out: position, inverse 2D covariance, opacity, tile rectangle
+    Vec4s colors;         // out: rgb and the view depth
     Uints tiles_touched;  // out: tiles its alpha >= 1/255 ellipse meets, 0 when not drawn
     Uints depth_keys;     // out: view depth as float bits if drawn, else NOT_DRAWN
     Uints depth_values;   // out: Gaussian index
@@ -139,9 +139,8 @@ uint preprocess(uint i, CameraParams cam) {
     const vec3 color = max(eval_sh(pc.sh, cam.sh_half != 0u, i * cam.sh_stride * 3u, cam.sh_degree, direction) + COLOR_OFFSET,
                            vec3(0.0));
 
-    pc.conic_opacity.v[i] = vec4(conic, position_opacity.w);
-    pc.colors.v[i] = vec4(color, 0.0);
-    pc.rects.v[i] = uvec2(lo.x | (lo.y << 16), hi.x | (hi.y << 16));
+    pc.footprints.v[i] = make_footprint(mean, conic, position_opacity.w, lo, hi);
+    pc.colors.v[i] = vec4(color, view.z);
     pc.tiles_touched.v[i] = tiles;
     return min(floatBitsToUint(view.z), NOT_DRAWN - 1u);
 }

@@ -25,6 +25,7 @@
 
 #include "buffers.glsl"
 #include "constants.glsl"
+#include "footprint.glsl"
 #include "frame.glsl"
 #include "tile_blocks.glsl"
 #include "train_layout.glsl"
@@ -37,9 +38,8 @@ layout(push_constant) uniform Push {
     CameraBuffer camera;
     UVec2s ranges;
     Uints tile_values;
-    Vec4s means_depth;
-    Vec4s conic_opacity;
-    Vec4s colors;
+    Footprints footprints;
+    Vec4s colors;          // rgb and view depth
     Floats transmittance;  // per pixel: final T (blend_train.comp)
     Uints last;            // per pixel: one past the last list position it blended
     Vec4s pixel_grad;      // per pixel: dL / d rgb
@@ -61,7 +61,7 @@ void add_gradient(uint index, float value) {
 #endif
 }
 
-shared vec4 batch_mean_depth[BATCH];
+shared vec4 batch_mean[BATCH];  // xy: as in blend_body.glsl
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
 shared uint batch_gaussian[BATCH];
@@ -102,13 +102,14 @@ void main() {
         uint touched = 0u;
         if (slot < batch_size) {
             const uint g = pc.tile_values.v[batch_start + slot];
-            const vec4 mean_depth = pc.means_depth.v[g];
-            const vec4 conic_o = pc.conic_opacity.v[g];
+            const Footprint footprint = pc.footprints.v[g];
+            const vec2 mean = footprint_mean(footprint);
+            const vec4 conic_o = footprint_conic_opacity(footprint);
             batch_gaussian[slot] = g;
-            batch_mean_depth[slot] = mean_depth;
+            batch_mean[slot] = vec4(mean, 0.0, 0.0);
             batch_conic_opacity[slot] = conic_o;
             batch_color[slot] = pc.colors.v[g];
-            touched = subgroup_blocks(touched_blocks(mean_depth.xy, conic_o, tile_origin));
+            touched = subgroup_blocks(touched_blocks(mean, conic_o, tile_origin));
         }
         list_block_hits(slot, touched);  // its barriers also order the stores above before the walk
 
@@ -123,7 +124,7 @@ void main() {
             float grad_opacity = 0.0;
             if (walked) {
                 const vec4 conic_o = batch_conic_opacity[j];
-                const vec2 d = batch_mean_depth[j].xy - pixel_f;
+                const vec2 d = batch_mean[j].xy - pixel_f;
                 const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
                 if (power <= 0.0) {
                     const float g = exp(power);

@@ -37,9 +37,8 @@ void FrameResources::ensure_gaussians(uint32_t count) {
     const auto& c = *context;
     const uint64_t n = count;
     replace(means_depth, c, n * 16, "projected means and depths");
-    replace(conic_opacity, c, n * 16, "conics and opacities");
-    replace(colors, c, n * 16, "splat colours");
-    replace(rects, c, n * 8, "tile rectangles");
+    replace(footprints, c, n * 32, "splat footprints");
+    replace(colors, c, n * 16, "splat colours and depths");
     replace(tiles_touched, c, n * 4, "tiles per splat");
     replace(depth_keys, c, n * 4, "depth keys");
     replace(depth_values, c, n * 4, "depth-sorted indices");
@@ -117,7 +116,7 @@ uint64_t FrameResources::bytes_for(const gpu::Context& context, uint32_t gaussia
     gaussians = std::max(gaussians, 1u);
     entries = std::max(entries, 1u);
     pixels = std::max(pixels, 1u);
-    return sizeof(CameraParams) + kCounterCount * sizeof(uint32_t) + uint64_t(gaussians) * 72 +
+    return sizeof(CameraParams) + kCounterCount * sizeof(uint32_t) + uint64_t(gaussians) * 80 +
            gpu::PrefixScan::Scratch::bytes_for(context, gaussians) + uint64_t(entries) * 8 +
            gpu::RadixSort::Scratch::bytes_for(context, std::max(gaussians, entries)) + uint64_t(pixels) * 24 +
            uint64_t(tiles) * 8 + (carry ? uint64_t(pixels) * kCarryBytesPerPixel : 0);
@@ -129,7 +128,7 @@ VkDeviceSize FrameResources::readback_bytes(uint32_t pixels) {
 
 uint64_t FrameResources::device_bytes() const {
     uint64_t total = 0;
-    for (const gpu::Buffer* b : {&camera, &counters, &means_depth, &conic_opacity, &colors, &rects, &tiles_touched,
+    for (const gpu::Buffer* b : {&camera, &counters, &means_depth, &footprints, &colors, &tiles_touched,
                                  &depth_keys, &depth_values,
                                  &entry_offsets, &tile_keys, &tile_values, &color_alpha, &depth, &contributors,
                                  &ranges, &packed, &stat_weight, &stat_max_weight, &stat_pixels,

@@ -19,7 +19,7 @@ struct FrameResources {
 
     // Per Gaussian (capacity gaussian_capacity).
     uint32_t gaussian_capacity = 0;
-    gpu::Buffer means_depth, conic_opacity, colors, rects, tiles_touched;
+    gpu::Buffer means_depth, footprints, colors, tiles_touched;
     gpu::Buffer depth_keys, depth_values, entry_offsets;
     std::unique_ptr<gpu::PrefixScan::Scratch> scan_scratch;
 

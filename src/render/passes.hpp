@@ -11,8 +11,7 @@ namespace vksplat::render {
 using Address = VkDeviceAddress;
 
 struct PreprocessPush {
-    Address camera, params, sh, means_depth, conic_opacity, colors, rects, tiles_touched, depth_keys,
-        depth_values, counters;
+    Address camera, params, sh, means_depth, footprints, colors, tiles_touched, depth_keys, depth_values, counters;
     gpu::RadixSort::DigitCounting depth_digits;  // passes 0: the depth sort counts its own digits
 };
 void record_preprocess(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const PreprocessPush& push,
@@ -26,8 +25,7 @@ void record_indirect_args(gpu::CommandStream& stream, const gpu::ComputePipeline
                           const IndirectArgsPush& push);
 
 struct EmitTileEntriesPush {
-    Address camera, counters, depth_values, entry_offsets, rects, means_depth, conic_opacity, tiles_touched, tile_keys,
-        tile_values;
+    Address camera, counters, depth_values, entry_offsets, footprints, tile_keys, tile_values;
 };
 void record_emit_tile_entries(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                               const EmitTileEntriesPush& push, const gpu::Buffer& args, VkDeviceSize args_offset);
@@ -46,8 +44,7 @@ void record_tile_ranges(gpu::CommandStream& stream, const gpu::ComputePipeline& 
                         const gpu::Buffer& args, VkDeviceSize args_offset);
 
 struct BlendPush {
-    Address camera, ranges, tile_values, means_depth, conic_opacity, colors, out_color_alpha, out_depth,
-        out_contributors;
+    Address camera, ranges, tile_values, footprints, colors, out_color_alpha, out_depth, out_contributors;
 };
 // The statistics variant (blend_stats.comp) takes four more buffers after the plain ones.
 struct BlendStatsPush {

@@ -156,9 +156,9 @@ void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tile
                                        bool gather_stats, const uint32_t* carry_flags) {
     using namespace render;
     auto& f = frame;
-    const BlendPush blend_push{f.camera.address(),      f.ranges.address(),        f.tile_values.address(),
-                               f.means_depth.address(), f.conic_opacity.address(), f.colors.address(),
-                               f.color_alpha.address(), f.depth.address(),         f.contributors.address()};
+    const BlendPush blend_push{f.camera.address(),      f.ranges.address(), f.tile_values.address(),
+                               f.footprints.address(),  f.colors.address(), f.color_alpha.address(),
+                               f.depth.address(),       f.contributors.address()};
     const BlendStatsPush stats_push{blend_push, f.stat_weight.address(), f.stat_max_weight.address(),
                                     f.stat_pixels.address(), f.stat_centre_weight.address()};
     if (carry_flags) {

@@ -51,8 +51,8 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     // Each kernel below waits for the one before (a few microseconds apiece however little they
     // do), so the scans' and sorts' setups run beside earlier kernels as soon as their counts are known.
     record_preprocess(stream, preprocess_,
-                      {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.conic_opacity.address(),
-                       f.colors.address(), f.rects.address(), f.tiles_touched.address(),
+                      {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.footprints.address(),
+                       f.colors.address(), f.tiles_touched.address(),
                        f.depth_keys.address(), f.depth_values.address(), f.counters.address(),
                        depth_digits.value_or(gpu::RadixSort::DigitCounting{})},
                       n);
@@ -82,8 +82,7 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
                           f.entry_capacity, 256});
     record_emit_tile_entries(stream, emit_tile_entries_,
                              {f.camera.address(), f.counters.address(), f.depth_values.address(),
-                              f.entry_offsets.address(), f.rects.address(), f.means_depth.address(),
-                              f.conic_opacity.address(), f.tiles_touched.address(), f.tile_keys.address(),
+                              f.entry_offsets.address(), f.footprints.address(), f.tile_keys.address(),
                               f.tile_values.address()},
                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
     // The sort clamps the entries needed to what the tile buffers hold, as indirect_args does.

@@ -77,9 +77,9 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     binning_.record(stream, frame_, params, {render_params_.address(), scene.sh_address(), n});
     auto& f = frame_;
     record_blend_train(stream, blend_,
-                       {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.means_depth.address(),
-                        f.conic_opacity.address(), f.colors.address(), f.color_alpha.address(), f.depth.address(),
-                        f.contributors.address(), transmittance_.address(), last_.address()},
+                       {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.footprints.address(),
+                        f.colors.address(), f.color_alpha.address(), f.depth.address(), f.contributors.address(),
+                        transmittance_.address(), last_.address()},
                        tiles_x_, tiles_y_);
     stream.barrier();
     stream.mark("blend");
@@ -92,9 +92,9 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     stream.fill(status_, 0);
     stream.barrier();
     record_blend_backward(stream, blend_backward_,
-                          {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.means_depth.address(),
-                           f.conic_opacity.address(), f.colors.address(), transmittance_.address(), last_.address(),
-                           pixel_grad, splat_grads_.address()},
+                          {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.footprints.address(),
+                           f.colors.address(), transmittance_.address(), last_.address(), pixel_grad,
+                           splat_grads_.address()},
                           tiles_x_, tiles_y_);
     stream.barrier();
     stream.mark("blend backward");

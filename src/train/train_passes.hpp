@@ -18,15 +18,14 @@ void record_activate(gpu::CommandStream& stream, const gpu::ComputePipeline& pip
 
 // blend_train.comp: render::BlendPush, then the transmittance and last-position images.
 struct BlendTrainPush {
-    Address camera, ranges, tile_values, means_depth, conic_opacity, colors, out_color_alpha, out_depth,
-        out_contributors, out_transmittance, out_last;
+    Address camera, ranges, tile_values, footprints, colors, out_color_alpha, out_depth, out_contributors,
+        out_transmittance, out_last;
 };
 void record_blend_train(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const BlendTrainPush& push,
                         uint32_t tiles_x, uint32_t tiles_y);
 
 struct BlendBackwardPush {
-    Address camera, ranges, tile_values, means_depth, conic_opacity, colors, transmittance, last, pixel_grad,
-        splat_grads;
+    Address camera, ranges, tile_values, footprints, colors, transmittance, last, pixel_grad, splat_grads;
 };
 void record_blend_backward(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline,
                            const BlendBackwardPush& push, uint32_t tiles_x, uint32_t tiles_y);
