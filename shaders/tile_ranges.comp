@@ -2,12 +2,18 @@
 // Finds each tile's [start, end) in the tile-sorted entries: an entry starts its tile's range
 // where its key differs from the previous one, and ends it where it differs from the next.
 // Tiles with no entries keep the (0, 0) range the frame was cleared to.
+//
+// Each invocation takes ENTRIES_PER_INVOCATION consecutive keys in one 16-byte load (where the
+// buffer is 16-byte aligned) and only their two neighbours singly: one key per invocation, with
+// both neighbours read again, made this 4x its memory floor (lego tiled 5x5: 9.2 M entries).
 #extension GL_GOOGLE_include_directive : require
+#extension GL_EXT_buffer_reference_uvec2 : require
 
 #include "buffers.glsl"
 #include "frame.glsl"
 
 layout(local_size_x = 256) in;
+const uint ENTRIES_PER_INVOCATION = 4;  // tile_binning.cpp sizes the dispatch by it
 
 layout(push_constant) uniform Push {
     Uints counters;
@@ -16,13 +22,31 @@ layout(push_constant) uniform Push {
     uint tile_count;  // keys at or past it are padding (tile_culling.glsl) and have no range
 } pc;
 
+// Past either end of the entries: differs from every tile.
+const uint NO_TILE = 0xffffffffu;
+
+uint key_at(uint e, uint count) { return e < count ? pc.tile_keys.v[e] : NO_TILE; }
+
 void main() {
     const uint count = pc.counters.v[COUNTER_ENTRIES];
     const uint tile_count = pc.tile_count;
-    for (uint e = gl_GlobalInvocationID.x; e < count; e += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
-        const uint tile = pc.tile_keys.v[e];
-        if (tile >= tile_count) continue;
-        if (e == 0u || pc.tile_keys.v[e - 1u] != tile) pc.ranges.v[tile].x = e;
-        if (e + 1u == count || pc.tile_keys.v[e + 1u] != tile) pc.ranges.v[tile].y = e + 1u;
+    const bool aligned = (uvec2(pc.tile_keys).x & 15u) == 0u;
+    for (uint q = gl_GlobalInvocationID.x; q * ENTRIES_PER_INVOCATION < count; q += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        const uint first = q * ENTRIES_PER_INVOCATION;
+        uint keys[ENTRIES_PER_INVOCATION + 2];  // the previous key, this invocation's, the next
+        keys[0] = first == 0u ? NO_TILE : pc.tile_keys.v[first - 1u];
+        if (aligned && first + ENTRIES_PER_INVOCATION <= count) {
+            const uvec4 quad = UVec4s(pc.tile_keys).v[q];
+            keys[1] = quad.x, keys[2] = quad.y, keys[3] = quad.z, keys[4] = quad.w;
+        } else {
+            for (uint i = 0u; i < ENTRIES_PER_INVOCATION; ++i) keys[1u + i] = key_at(first + i, count);
+        }
+        keys[ENTRIES_PER_INVOCATION + 1u] = key_at(first + ENTRIES_PER_INVOCATION, count);
+        for (uint i = 0u; i < ENTRIES_PER_INVOCATION; ++i) {
+            const uint tile = keys[1u + i];
+            if (tile >= tile_count) continue;  // padding, or past the end
+            if (keys[i] != tile) pc.ranges.v[tile].x = first + i;
+            if (keys[i + 2u] != tile) pc.ranges.v[tile].y = first + i + 1u;
+        }
     }
 }

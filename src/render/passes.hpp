@@ -36,6 +36,8 @@ struct ClearWordsPush {
 };
 void record_clear_words(gpu::CommandStream& stream, const gpu::ComputePipeline& pipeline, const ClearWordsPush& push);
 
+// Entries one tile_ranges invocation takes (its ENTRIES_PER_INVOCATION): its dispatch is sized by it.
+constexpr uint32_t kTileRangeEntriesPerInvocation = 4;
 struct TileRangesPush {
     Address counters, tile_keys, ranges;
     uint32_t tile_count;

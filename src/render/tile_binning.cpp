@@ -79,7 +79,7 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     stream.barrier();
     record_indirect_args(stream, indirect_args_,
                          {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
-                          f.entry_capacity, 256});
+                          f.entry_capacity, 256 * kTileRangeEntriesPerInvocation});
     record_emit_tile_entries(stream, emit_tile_entries_,
                              {f.camera.address(), f.counters.address(), f.depth_values.address(),
                               f.entry_offsets.address(), f.footprints.address(), f.tile_keys.address(),
