@@ -31,7 +31,7 @@ layout(push_constant) uniform Push {
     CameraBuffer camera;
     Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
     Floats sh;            // [Gaussian][coefficient][rgb], floats or packed halves (cam.sh_half)
-    Vec4s means_depth;    // out: pixel position (x, y), view depth, radius in pixels
+    Vec4s means_depth;    // out where cam.write_projection: pixel position (x, y), view depth, radius in pixels
     Footprints footprints;  // out: position, inverse 2D covariance, opacity, tile rectangle
     Vec4s colors;         // out: rgb and the view depth
     Uints tiles_touched;  // out: tiles its alpha >= 1/255 ellipse meets, 0 when not drawn
@@ -64,9 +64,9 @@ mat3 covariance_3d(vec3 scale, vec4 q) {
 
 // Not drawn. The radius is zeroed too: per-Gaussian statistics read "radius > 0" as visible in
 // the reference's sense (in front of the near plane, non-empty 3-sigma rectangle).
-uint cull(uint i) {
+uint cull(uint i, CameraParams cam) {
     pc.tiles_touched.v[i] = 0u;
-    pc.means_depth.v[i].w = 0.0;
+    if (cam.write_projection != 0u) pc.means_depth.v[i].w = 0.0;
     return NOT_DRAWN;
 }
 
@@ -84,7 +84,7 @@ uint preprocess(uint i, CameraParams cam) {
     const vec3 view = vec3(dot(cam.view_row0.xyz, p) + cam.view_row0.w,
                            dot(cam.view_row1.xyz, p) + cam.view_row1.w,
                            dot(cam.view_row2.xyz, p) + cam.view_row2.w);
-    if (view.z <= NEAR_PLANE) return cull(i);
+    if (view.z <= NEAR_PLANE) return cull(i, cam);
 
     const mat3 sigma = covariance_3d(pc.params.v[3u * i + 1u].xyz, pc.params.v[3u * i + 2u]);
 
@@ -104,7 +104,7 @@ uint preprocess(uint i, CameraParams cam) {
     const float c = cov[1][1] + LOW_PASS_FILTER;
 
     const float det = a * c - b * b;
-    if (det == 0.0) return cull(i);
+    if (det == 0.0) return cull(i, cam);
     const float det_inv = 1.0 / det;
     const vec3 conic = vec3(c * det_inv, -b * det_inv, a * det_inv);
     const float mid = 0.5 * (a + c);
@@ -121,8 +121,8 @@ uint preprocess(uint i, CameraParams cam) {
     const uvec2 rect_min = uvec2(max(ivec2(clamp((mean - radius) / tile, vec2(-1.0), grid)), ivec2(0)));
     const uvec2 rect_max =
         uvec2(max(ivec2(clamp((mean + radius + tile - 1.0) / tile, vec2(-1.0), grid)), ivec2(0)));
-    if (radius <= 0.0 || any(lessThanEqual(rect_max, rect_min))) return cull(i);
-    pc.means_depth.v[i] = vec4(mean, view.z, radius);
+    if (radius <= 0.0 || any(lessThanEqual(rect_max, rect_min))) return cull(i, cam);
+    if (cam.write_projection != 0u) pc.means_depth.v[i] = vec4(mean, view.z, radius);
     // Below 1/255 opacity a splat touches no pixel anywhere (alpha <= opacity).
     const float bound = touch_bound(position_opacity.w);
     if (bound < 0.0) return skip_untouched(i);

@@ -20,7 +20,8 @@ struct CameraParams {
     uint sh_stride;        // SH coefficients stored per Gaussian (scene degree)
     uint entry_capacity;   // tile entries the frame's buffers hold
     uint sh_half;          // 1: SH stored as packed halves (SceneStorage::half_sh)
-    uint padding[3];
+    uint write_projection;  // 1: preprocess writes means_depth, which only statistics and training read
+    uint padding[2];
 };
 layout(buffer_reference, std430, buffer_reference_align = 16) readonly buffer CameraBuffer { CameraParams c; };
 

@@ -55,6 +55,9 @@ CameraParams make_camera_params(const Camera& camera, const RenderSettings& sett
     p.sh_degree = static_cast<uint32_t>(std::clamp(std::min(settings.max_sh_degree, scene_sh_degree), 0, 3));
     p.sh_stride = static_cast<uint32_t>(sh_coefficients_for_degree(scene_sh_degree));
     p.sh_half = scene_half_sh ? 1u : 0u;
+    // A plain frame's passes read the splats' footprints and colours; the projected means, depths
+    // and radii are for the statistics (and training, DifferentiableRenderer::record_forward).
+    p.write_projection = settings.gather_stats ? 1u : 0u;
     p.entry_capacity = entry_capacity;
     return p;
 }

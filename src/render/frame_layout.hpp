@@ -22,7 +22,8 @@ struct alignas(16) CameraParams {
     uint32_t sh_stride;
     uint32_t entry_capacity;
     uint32_t sh_half;
-    uint32_t padding[3];
+    uint32_t write_projection;
+    uint32_t padding[2];
 };
 static_assert(sizeof(CameraParams) == 160, "must match CameraParams in frame.glsl (std430)");
 

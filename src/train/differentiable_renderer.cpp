@@ -68,7 +68,10 @@ void DifferentiableRenderer::grow_entries(uint32_t needed) {
 }
 
 void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const TrainableScene& scene,
-                                            const render::CameraParams& params) {
+                                            const render::CameraParams& camera_params) {
+    // Densification reads the radii the projection holds.
+    render::CameraParams params = camera_params;
+    params.write_projection = 1;
     const uint32_t n = scene.layout.count;
     tiles_x_ = params.size[2];
     tiles_y_ = params.size[3];
