@@ -156,7 +156,7 @@ void main() {
         const vec3 to_gaussian = p - cam.position.xyz;
         const float distance = length(to_gaussian);
         const vec3 dir = to_gaussian / distance;
-        const vec3 sh_color = eval_sh(Floats(pc.raw), false, sho, cam.sh_degree, dir) + COLOR_OFFSET;
+        const vec3 sh_color = eval_sh_in_place(ShSource(Floats(pc.raw), false, false, sho), cam.sh_degree, dir) + COLOR_OFFSET;
         dl_dcolor *= vec3(greaterThanEqual(sh_color, vec3(0.0)));
         const vec3 dl_ddir = sh_backward(sho, cam.sh_degree, dir, dl_dcolor);
         for (uint k = 3u * (cam.sh_degree + 1u) * (cam.sh_degree + 1u); k < sh_floats; ++k) pc.grads.v[sho + k] = 0.0;
