@@ -37,9 +37,9 @@ void commit(const fs::path& temporary, const fs::path& path, WriteMode mode) {
             return;
         }
         if (error == std::errc::file_exists)
-            throw InputError(path.string(), "already exists (appeared while writing); not overwritten");
+            throw InputError(path.string(), "already exists (appeared while writing); not overwritten (--force replaces it)");
         // File systems without hard links: fall back to a checked rename.
-        if (fs::exists(path)) throw InputError(path.string(), "already exists; not overwritten");
+        if (fs::exists(path)) throw InputError(path.string(), "already exists; not overwritten (--force replaces it)");
         error.clear();
     }
     fs::rename(temporary, path, error);
@@ -49,12 +49,7 @@ void commit(const fs::path& temporary, const fs::path& path, WriteMode mode) {
 }  // namespace
 
 void write_file_atomically(const fs::path& path, WriteMode mode, const std::function<void(std::ostream&)>& write) {
-    if (mode == WriteMode::refuse_existing && fs::exists(path))
-        throw InputError(path.string(), "already exists; not overwritten (ask for overwrite to replace it)");
-    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(folder))
-        throw InputError(path.string(), "cannot be written: folder " + folder.string() + " does not exist");
-
+    check_writable(path, mode);
     const fs::path temporary = temporary_sibling(path);
     try {
         {

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <functional>
 #include <ostream>
+#include <vector>
 
 namespace vksplat::io {
 
@@ -18,5 +19,14 @@ enum class WriteMode {
 // naming `path` if it exists and mode is refuse_existing, or if writing fails.
 void write_file_atomically(const std::filesystem::path& path, WriteMode mode,
                            const std::function<void(std::ostream&)>& write);
+
+// What write_file_atomically checks before it writes, for commands to call before any work, so
+// that minutes of work never end in a refusal: throws InputError naming `path` if it exists and
+// mode is refuse_existing, if it is a folder, or if its folder is missing or not writable.
+void check_writable(const std::filesystem::path& path, WriteMode mode);
+
+// Throws InputError naming `output` if it is one of `inputs` (the same file by any path or link):
+// no command writes over what it reads, whatever the WriteMode.
+void refuse_input_as_output(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
 
 }  // namespace vksplat::io
