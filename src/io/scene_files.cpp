@@ -64,12 +64,19 @@ GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, 
     return read_gsplat_checkpoint(path, notes);
 }
 
-void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mode, std::string format) {
+std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
     const std::string name = chosen_format(path, format);
+    if (name != "ply" && name != "splat" && name != "spz")
+        throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here (writable: ply, splat, spz)");
+    check_writable(path, mode);
+    return name;
+}
+
+void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mode, std::string format) {
+    const std::string name = check_scene_writable(path, mode, format);
     if (name == "ply") return write_ply(cloud, path, mode);
     if (name == "splat") return write_splat(cloud, path, mode);
-    if (name == "spz") return write_spz(cloud, path, mode);
-    throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here (writable: ply, splat, spz)");
+    return write_spz(cloud, path, mode);
 }
 
 }  // namespace vksplat::io

@@ -74,6 +74,10 @@ std::string scene_format_of(const std::filesystem::path& path);
 // a format could not hold) are appended to `notes`.
 GaussianCloud read_scene(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr,
                          std::string format = "");
+// What write_scene checks before it writes, for commands to call before any work: the format
+// (as write_scene chooses it, returned) is one it writes, and io::check_writable passes.
+std::string check_scene_writable(const std::filesystem::path& path, WriteMode mode = WriteMode::refuse_existing,
+                                 const std::string& format = "");
 // Writes a scene as "ply", "splat" or "spz" (by extension when `format` is empty). The read-only
 // formats, and unknown ones, give InputError.
 void write_scene(const GaussianCloud& cloud, const std::filesystem::path& path,
