@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <unordered_map>
 
 #include "io/byte_order.hpp"
 #include "io/formats_detail.hpp"
@@ -519,14 +520,11 @@ private:
         if (items.size() % 2) fail(at, "odd number of items for a dict");
         for (size_t i = 0; i < items.size(); i += 2) dict.entries.emplace_back(items[i], items[i + 1]);
     }
-    void memo_put(uint64_t index, size_t at) {
-        if (index > (uint64_t{1} << 28)) fail(at, "memo index " + std::to_string(index) + " is absurd");
-        if (memo_.size() <= index) memo_.resize(index + 1);
-        memo_[index] = top(at);
-    }
+    void memo_put(uint64_t index, size_t at) { memo_[index] = top(at); }
     Ref memo_get(uint64_t index, size_t at) const {
-        if (index >= memo_.size() || !memo_[index]) fail(at, "memo entry " + std::to_string(index) + " was never set");
-        return memo_[index];
+        const auto found = memo_.find(index);
+        if (found == memo_.end()) fail(at, "memo entry " + std::to_string(index) + " was never set");
+        return found->second;
     }
 
     static Ref instance_of(const Value& cls) {
@@ -604,7 +602,9 @@ private:
     size_t position_ = 0;
     std::vector<Ref> stack_;
     std::vector<size_t> marks_;
-    std::vector<Ref> memo_;
+    // Keyed by index, not a vector grown to the largest: BINPUT may name any index up to 2^32 - 1,
+    // and 5 bytes must not cost gigabytes.
+    std::unordered_map<uint64_t, Ref> memo_;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -676,6 +676,12 @@ public:
             throw InputError(at, "reaches " + (overflow ? std::string("beyond 2^64 elements") : "element " + std::to_string(last)) +
                                      " of storage '" + storage.key + "', which has only " +
                                      std::to_string(storage.numel) + " (sizes, strides or offset are corrupt)");
+        // A view that repeats elements (a zero stride) may hold more than its storage; a parameter
+        // never does, and allowing it would let a few bytes describe 2^40 Gaussians.
+        if (count > static_cast<uint64_t>(storage.numel))
+            throw InputError(at, "has " + std::to_string(count) + " elements but its storage '" + storage.key +
+                                     "' only " + std::to_string(storage.numel) +
+                                     " (a broadcast view, or corrupt sizes and strides)");
 
         const std::string& bytes = storage_bytes(storage, *dtype, at);
         std::vector<float> values(count);
@@ -813,16 +819,22 @@ GaussianCloud read_gsplat_checkpoint(const fs::path& path, std::vector<std::stri
                                         "; expected [N, K, 3] with K = 0, 3, 8 or 15 and N = " + std::to_string(n));
     }
 
+    // Gathered before the cloud is sized for n: gather checks each tensor against the bytes really in
+    // the archive, so n is then known to be backed by data.
     TensorReader reader(zip, prefix, swap, where);
+    std::vector<float> positions = reader.gather(*means, "means");
+    std::vector<float> rotations = reader.gather(*quats, "quats");  // gsplat's quaternions are w, x, y, z too
+    std::vector<float> log_scales = reader.gather(*scales, "scales");
+    std::vector<float> opacity_logits = reader.gather(*opacities, "opacities");
+    const std::vector<float> dc = reader.gather(*sh0, "sh0");
+    const std::vector<float> rest = sh_rest ? reader.gather(*sh_rest, "shN") : std::vector<float>{};
     GaussianCloud cloud;
     cloud.sh_degree = sh_degree;
     cloud.resize(static_cast<size_t>(n));
-    cloud.positions = reader.gather(*means, "means");
-    cloud.rotations = reader.gather(*quats, "quats");  // gsplat's quaternions are w, x, y, z too
-    cloud.log_scales = reader.gather(*scales, "scales");
-    cloud.opacity_logits = reader.gather(*opacities, "opacities");
-    const std::vector<float> dc = reader.gather(*sh0, "sh0");
-    const std::vector<float> rest = sh_rest ? reader.gather(*sh_rest, "shN") : std::vector<float>{};
+    cloud.positions = std::move(positions);
+    cloud.rotations = std::move(rotations);
+    cloud.log_scales = std::move(log_scales);
+    cloud.opacity_logits = std::move(opacity_logits);
     // Both are [coefficient][rgb] per Gaussian, as the cloud is: DC first, then the rest.
     const size_t coefficients = static_cast<size_t>(cloud.sh_coefficients());
     for (size_t i = 0; i < static_cast<size_t>(n); ++i) {
