@@ -19,6 +19,9 @@ packages=(
 [ "$mode" = test ] && packages+=(xvfb xdotool imagemagick)
 # ... and runs the GPU tests under the Vulkan validation layer.
 [ "$mode" = test ] && packages+=(vulkan-validationlayers)
+# ... and checks the .splat/.spz writers with PlayCanvas splat-transform (npm, installed below) --
+# unless a Node.js with npm is there already (NodeSource's nodejs bundles npm, conflicting with Debian's).
+[ "$mode" = test ] && ! command -v npm >/dev/null && packages+=(nodejs npm)
 sudo_cmd=()
 [ "$(id -u)" -eq 0 ] || sudo_cmd=(sudo)
 missing=()
@@ -27,6 +30,16 @@ if [ ${#missing[@]} -gt 0 ]; then
   echo "installing: ${missing[*]}"
   "${sudo_cmd[@]}" apt-get update -qq
   DEBIAN_FRONTEND=noninteractive "${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+fi
+
+# splat-transform, pinned, in a git-ignored folder of the project (tests/io/splat_transform_test.sh
+# looks there); install scripts are skipped: they fetch GPU binaries the test does not use.
+splat_transform_version=2.7.1
+if [ "$mode" = test ] && ! grep -qs "\"version\": \"$splat_transform_version\"" \
+    "$root/.npm-tools/node_modules/@playcanvas/splat-transform/package.json"; then
+  echo "installing @playcanvas/splat-transform@$splat_transform_version into .npm-tools/"
+  npm install --prefix "$root/.npm-tools" --no-audit --no-fund --ignore-scripts --silent \
+    "@playcanvas/splat-transform@$splat_transform_version"
 fi
 
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
