@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include "gpu/command_stream.hpp"
 #include "gpu/transfer.hpp"
@@ -86,6 +88,17 @@ TrainableScene TrainableScene::upload(const gpu::Context& context, const Gaussia
     fill(scene.first_moment, first_moment);
     fill(scene.second_moment, second_moment);
     return scene;
+}
+
+void TrainableScene::restore_densify_sums(const gpu::Context& context, const std::vector<float>& sums) const {
+    if (sums.size() != uint64_t(layout.count) * kDensifyStride)
+        throw std::invalid_argument("restore_densify_sums: " + std::to_string(sums.size()) + " sums for " +
+                                    std::to_string(layout.count) + " Gaussians");
+    const gpu::Buffer staged = gpu::upload_buffer(context, sums, "densification sums upload");
+    gpu::CommandStream stream(context, 0);
+    stream.begin();
+    stream.copy(staged, densify, staged.size());
+    stream.submit_and_wait();
 }
 
 GaussianCloud TrainableScene::download(const gpu::Context& context, const gpu::Buffer& buffer) const {

@@ -23,6 +23,9 @@ struct TrainableScene {
     // Room for `count` Gaussians: parameters and moments uninitialised, gradients and
     // densification sums zero.
     static TrainableScene allocate(const gpu::Context& context, uint32_t count, int sh_degree);
+    // Densification sums saved with a checkpoint (kDensifyStride floats per Gaussian) back on
+    // the device, so that a resumed run densifies as the uninterrupted one would.
+    void restore_densify_sums(const gpu::Context& context, const std::vector<float>& sums) const;
     // The parameters (or any buffer of this layout) as a cloud.
     GaussianCloud download(const gpu::Context& context, const gpu::Buffer& buffer) const;
     GaussianCloud download(const gpu::Context& context) const { return download(context, params); }

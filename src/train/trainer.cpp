@@ -3,13 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <limits>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
 #include "gpu/transfer.hpp"
 #include "render/frame_layout.hpp"
+#include "train/checkpoint_file.hpp"
 #include "train/densify.hpp"
 #include "train/differentiable_renderer.hpp"
 #include "train/loss_passes.hpp"
@@ -26,8 +26,6 @@ namespace {
 constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kEpsilon = 1e-15f;
 // Steps an overflowing view may be re-run with grown tile-entry buffers before giving up.
 constexpr uint32_t kMaxAttempts = 8;
-
-constexpr char kCheckpointMagic[8] = {'V', 'K', 'S', 'C', 'K', 'P', 'T', '1'};
 
 uint32_t pack_rgba8(float r, float g, float b, uint8_t alpha) {
     const auto byte = [](float v) {
@@ -225,53 +223,34 @@ uint64_t Trainer::device_bytes() const {
            d.pixel_grad.size();
 }
 
-// Checkpoint file: magic, then uint64 count, sh degree, iteration, skipped steps, then the
-// parameters, first and second moments as float32 arrays in the trainer's layout, little-endian
-// as the machine writes them (checkpoints are for resuming on the same kind of machine).
 void Trainer::save_checkpoint(const std::filesystem::path& path, io::WriteMode mode) const {
     const auto& d = *impl_;
+    CheckpointData data;
+    data.count = d.scene.layout.count;
+    data.sh_degree = uint64_t(d.scene.sh_degree);
+    data.iteration = d.iteration;
+    data.skipped = d.skipped;
+    data.owner = d.options.checkpoint_owner;
     const uint64_t floats = d.scene.layout.total();
-    const auto params = gpu::read_buffer<float>(d.context, d.scene.params, floats);
-    const auto first = gpu::read_buffer<float>(d.context, d.scene.first_moment, floats);
-    const auto second = gpu::read_buffer<float>(d.context, d.scene.second_moment, floats);
-    io::write_file_atomically(path, mode, [&](std::ostream& out) {
-        out.write(kCheckpointMagic, sizeof(kCheckpointMagic));
-        const uint64_t header[4] = {d.scene.layout.count, uint64_t(d.scene.sh_degree), d.iteration, d.skipped};
-        out.write(reinterpret_cast<const char*>(header), sizeof(header));
-        for (const auto* array : {&params, &first, &second})
-            out.write(reinterpret_cast<const char*>(array->data()), std::streamsize(floats * sizeof(float)));
-    });
+    data.params = gpu::read_buffer<float>(d.context, d.scene.params, floats);
+    data.first_moment = gpu::read_buffer<float>(d.context, d.scene.first_moment, floats);
+    data.second_moment = gpu::read_buffer<float>(d.context, d.scene.second_moment, floats);
+    data.densify_sums = gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(data.count) * kDensifyStride);
+    write_checkpoint(path, data, mode);
 }
 
 void Trainer::Impl::load_checkpoint(const std::filesystem::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path.string(), "cannot open the checkpoint");
-    char magic[sizeof(kCheckpointMagic)];
-    uint64_t header[4];
-    if (!in.read(magic, sizeof(magic)) || std::memcmp(magic, kCheckpointMagic, sizeof(magic)) != 0)
-        throw InputError(path.string(), "not a vksplat training checkpoint");
-    if (!in.read(reinterpret_cast<char*>(header), sizeof(header)))
-        throw InputError(path.string(), "truncated checkpoint header");
-    if (header[0] == 0 || header[0] > std::numeric_limits<uint32_t>::max() || header[1] > 3)
-        throw InputError(path.string(), "checkpoint header is corrupt (count " + std::to_string(header[0]) +
-                                            ", SH degree " + std::to_string(header[1]) + ")");
-    const ParameterLayout layout{static_cast<uint32_t>(header[0]),
-                                 static_cast<uint32_t>(sh_coefficients_for_degree(int(header[1])))};
-    const uint64_t floats = layout.total();
-    std::vector<float> arrays[3];
-    for (auto& array : arrays) {
-        array.resize(floats);
-        if (!in.read(reinterpret_cast<char*>(array.data()), std::streamsize(floats * sizeof(float))))
-            throw InputError(path.string(), "truncated checkpoint (" + std::to_string(header[0]) +
-                                                " Gaussians expected)");
-    }
-    const int degree = int(header[1]);
-    const GaussianCloud first = unpack_parameters(arrays[1], layout.count, degree);
-    const GaussianCloud second = unpack_parameters(arrays[2], layout.count, degree);
-    scene = TrainableScene::upload(context, unpack_parameters(arrays[0], layout.count, degree), &first, &second);
-    iteration = header[2];
-    skipped = header[3];
-    report.input_count = layout.count;
+    const CheckpointData data = read_checkpoint(path);
+    check_checkpoint_owner(path, data.owner, options.checkpoint_owner);
+    const auto count = static_cast<uint32_t>(data.count);
+    const int degree = int(data.sh_degree);
+    const GaussianCloud first = unpack_parameters(data.first_moment, count, degree);
+    const GaussianCloud second = unpack_parameters(data.second_moment, count, degree);
+    scene = TrainableScene::upload(context, unpack_parameters(data.params, count, degree), &first, &second);
+    scene.restore_densify_sums(context, data.densify_sums);
+    iteration = data.iteration;
+    skipped = data.skipped;
+    report.input_count = count;
 }
 
 }  // namespace vksplat::train

@@ -8,16 +8,20 @@
 #include <random>
 
 #include "support/gpu_fixture.hpp"
+#include "io/io_test_helpers.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/train/scene_extent.hpp"
+#include "vksplat/train/checkpoint.hpp"
 #include "vksplat/train/trainer.hpp"
 
 namespace vksplat::test {
 namespace {
+
+using io::test::expect_input_error;
 
 // Ten views on an arc around a cluster of Gaussians at the origin; the last two are held out.
 std::vector<Camera> arc_of_views(int width, int height) {
@@ -115,6 +119,20 @@ TEST_F(Trainer, RefusesAPhotoOfTheWrongSize) {
     }
 }
 
+TEST_F(Trainer, RefusesABackgroundThatIsNotAColour) {
+    const auto cameras = arc_of_views(32, 24);
+    train::TrainOptions options;
+    options.background = {0.0f, std::nanf(""), 0.0f};
+    train::Trainer trainer(context(), cluster(2, 10), options);
+    train::Photo photo{32, 24, std::vector<uint32_t>(32 * 24, 0xffffffffu)};
+    try {
+        trainer.step(cameras[0], photo);
+        FAIL() << "trained on a NaN background";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("background (0, nan, 0)"), std::string::npos) << e.what();
+    }
+}
+
 TEST_F(Trainer, DropsGaussiansWithNanAttributesAndSaysSo) {
     GaussianCloud cloud = cluster(4, 12);
     cloud.positions[3] = std::nanf("");
@@ -154,9 +172,60 @@ TEST_F(Trainer, ACheckpointResumesTheSameState) {
 
     // Not a checkpoint, or a truncated one: an error naming the file.
     const auto bad = std::filesystem::temp_directory_path() / "vksplat_trainer_test.not_a_checkpoint";
-    { std::ofstream(bad) << "VKSCKPT1 but short"; }
+    { std::ofstream(bad) << "VKSCKPT2 but short"; }
     EXPECT_THROW(train::Trainer(context(), bad, {}), InputError);
+    // The first format recorded neither its run nor the densification sums: named, not resumed.
+    { std::ofstream(bad) << "VKSCKPT1 and the rest of an old checkpoint"; }
+    expect_input_error([&] { train::Trainer(context(), bad, {}); }, {bad.string(), "older vksplat"});
     std::filesystem::remove(bad);
+}
+
+// A run resumed between two densifications densifies as the uninterrupted one: the sums gathered
+// before the checkpoint (gradient norms, views, radii) come back with it.
+TEST_F(Trainer, ACheckpointCarriesTheDensificationSums) {
+    const auto cameras = arc_of_views(32, 24);
+    const GaussianCloud truth = cluster(8, 20);
+    Renderer renderer(context());
+    renderer.set_scene(truth);
+    train::Trainer trainer(context(), perturbed(truth, 2), {});
+    for (int i = 0; i < 4; ++i) {
+        const Camera& camera = cameras[size_t(2 * i)];
+        trainer.step(camera, train::Photo::from_image(as_image(renderer.render(camera))));
+    }
+    const auto path = std::filesystem::temp_directory_path() / "vksplat_densify_sums.checkpoint";
+    trainer.save_checkpoint(path);
+    train::Trainer resumed(context(), path, {});
+    std::filesystem::remove(path);
+
+    train::DensifyRules rules;
+    rules.grad_threshold = 1e-12;  // every Gaussian drawn since the last densification qualifies
+    const train::DensifyReport whole = trainer.densify(rules), again = resumed.densify(rules);
+    EXPECT_GT(whole.cloned + whole.split, 0u);
+    EXPECT_EQ(again.cloned, whole.cloned);
+    EXPECT_EQ(again.split, whole.split);
+    EXPECT_EQ(again.after, whole.after);
+    EXPECT_EQ(resumed.cloud().positions, trainer.cloud().positions);
+}
+
+// A checkpoint records the run it belongs to; another run's is refused, naming what differs.
+TEST_F(Trainer, ACheckpointOfAnotherRunIsRefused) {
+    const auto cameras = arc_of_views(32, 24);
+    const GaussianCloud truth = cluster(8, 20);
+    train::TrainOptions mine;
+    mine.checkpoint_owner = {"finetune of a.ply", {{"scene", "0123"}, {"seed", "0"}}};
+    train::Trainer trainer(context(), truth, mine);
+    const auto path = std::filesystem::temp_directory_path() / "vksplat_owner.checkpoint";
+    trainer.save_checkpoint(path);
+    const auto header = train::read_checkpoint_header(path);
+    ASSERT_TRUE(header.has_value());
+    EXPECT_EQ(header->owner.fields, mine.checkpoint_owner.fields);
+    EXPECT_EQ(train::Trainer(context(), path, mine).size(), truth.size());
+    train::TrainOptions theirs = mine;
+    theirs.checkpoint_owner = {"finetune of b.ply", {{"scene", "4567"}, {"seed", "0"}}};
+    expect_input_error([&] { train::Trainer(context(), path, theirs); },
+                       {path.string(), "another run (finetune of a.ply)", "its scene is 0123, this run's is 4567"});
+    std::filesystem::remove(path);
+    EXPECT_FALSE(train::read_checkpoint_header(path).has_value());
 }
 
 }  // namespace

@@ -21,6 +21,7 @@
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/scene.hpp"
+#include "vksplat/train/checkpoint.hpp"
 
 namespace vksplat::io {
 struct ImageRGB;
@@ -53,6 +54,8 @@ struct TrainOptions {
     double ssim_weight = 0.2;            // lambda_dssim
     std::array<float, 3> background{0.0f, 0.0f, 0.0f};
     int sh_degree = 3;                   // SH bands evaluated (capped at the scene's degree)
+    // Written into every checkpoint; a checkpoint of another owner is refused on resume.
+    CheckpointOwner checkpoint_owner;
 };
 
 // A photo as the loss reads it: RGBA8 per pixel, r in the low byte, row-major, top row first.
@@ -107,8 +110,9 @@ public:
     // Sanitises a copy of `initial` (see sanitize(); dropped Gaussians are gone from cloud()) and
     // uploads it with Adam's moments at zero. Throws InputError for an empty scene.
     Trainer(const gpu::Context& context, const GaussianCloud& initial, const TrainOptions& options);
-    // Continues from a checkpoint (save_checkpoint): parameters, moments and the iteration count.
-    // Throws InputError naming the file if it is not a vksplat checkpoint or is truncated.
+    // Continues from a checkpoint (save_checkpoint): parameters, moments, densification sums and
+    // the counters. Throws InputError naming the file if it is not a vksplat checkpoint, is
+    // truncated, or belongs to another owner than options.checkpoint_owner.
     Trainer(const gpu::Context& context, const std::filesystem::path& checkpoint, const TrainOptions& options);
     ~Trainer();
     Trainer(const Trainer&) = delete;
@@ -138,8 +142,9 @@ public:
     // Device memory its buffers hold (scene, gradients, moments, frame, loss).
     uint64_t device_bytes() const;
 
-    // Writes parameters, moments and counters through io::write_file_atomically, so an
-    // interrupted write leaves the previous checkpoint intact.
+    // Writes parameters, moments, densification sums, counters and options.checkpoint_owner
+    // through io::write_file_atomically, so an interrupted write leaves the previous checkpoint
+    // intact (vksplat/train/checkpoint.hpp).
     void save_checkpoint(const std::filesystem::path& path, io::WriteMode mode = io::WriteMode::overwrite) const;
 
 private:
