@@ -118,8 +118,11 @@ uint64_t FrameResources::bytes_for(const gpu::Context& context, uint32_t gaussia
     pixels = std::max(pixels, 1u);
     return sizeof(CameraParams) + kCounterCount * sizeof(uint32_t) + uint64_t(gaussians) * 80 +
            gpu::PrefixScan::Scratch::bytes_for(context, gaussians) + uint64_t(entries) * 8 +
-           gpu::RadixSort::Scratch::bytes_for(context, std::max(gaussians, entries)) + uint64_t(pixels) * 24 +
-           uint64_t(tiles) * 8 + (carry ? uint64_t(pixels) * kCarryBytesPerPixel : 0);
+           gpu::RadixSort::Scratch::bytes_for(context, std::max(gaussians, entries)) + image_bytes(pixels, tiles, carry);
+}
+
+uint64_t FrameResources::image_bytes(uint32_t pixels, uint32_t tiles, bool carry) {
+    return uint64_t(pixels) * 24 + uint64_t(tiles) * 8 + (carry ? uint64_t(pixels) * kCarryBytesPerPixel : 0);
 }
 
 VkDeviceSize FrameResources::readback_bytes(uint32_t pixels) {

@@ -66,6 +66,9 @@ struct FrameResources {
     // (and ensure_carry) for these sizes: what a frame needs besides the scene.
     static uint64_t bytes_for(const gpu::Context& context, uint32_t gaussians, uint32_t entries, uint32_t pixels,
                               uint32_t tiles, bool carry);
+    // The part of bytes_for that grows with the image (colour, depth, contributors, tile ranges,
+    // and the carried state): what a frame of this size needs however few Gaussians it draws.
+    static uint64_t image_bytes(uint32_t pixels, uint32_t tiles, bool carry);
     static VkDeviceSize readback_bytes(uint32_t pixels);
 };
 

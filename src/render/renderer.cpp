@@ -40,6 +40,23 @@ std::string mebibytes(uint64_t bytes) {
     return text;
 }
 
+// Refuses a frame that needs more than `budget` even with a single Gaussian: `least` bytes, of
+// which `image` grow with its pixels. Chunks split the Gaussians, never the pixels, so the message
+// says what the frame itself needs, and advises a larger budget only where the device has one.
+void check_frame_fits(const Camera& camera, uint64_t least, uint64_t image, uint64_t budget, uint64_t device) {
+    if (least <= budget) return;
+    const uint64_t pixels = uint64_t(camera.width) * uint64_t(camera.height);
+    const std::string frame = "a " + std::to_string(camera.width) + "x" + std::to_string(camera.height) + " frame";
+    const std::string needs = mebibytes(least) + " however the Gaussians are chunked (its per-pixel buffers: " +
+                              std::to_string(image / pixels) + " bytes a pixel, " + mebibytes(image) + ")";
+    if (device > 0 && least > device)
+        throw GpuError(frame + " needs " + needs + ": more than the device's " + mebibytes(device) +
+                       "; use a smaller resolution");
+    throw GpuError("memory budget of " + mebibytes(budget) + " is too small for " + frame + ": it needs " + needs +
+                   "; raise --memory-budget to at least " + std::to_string((least + (1 << 20) - 1) >> 20) + " (MiB" +
+                   (device > 0 ? "; the device has " + mebibytes(device) : std::string()) + ")");
+}
+
 }  // namespace
 
 struct Renderer::Impl {
@@ -243,6 +260,11 @@ void Renderer::Impl::add_stage_times() {
 void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
     camera.validate();
     const auto [pixels, tiles] = render::image_extent(camera);
+    // The image buffers of a frame no device can hold: refused before an allocation fails with
+    // advice (a smaller budget, chunks) that cannot help.
+    const uint64_t device = context.info().device_local_budget;
+    const uint64_t image = render::FrameResources::image_bytes(pixels, tiles, false);
+    if (device > 0) check_frame_fits(camera, image, image, device, device);
     stats = {};
     stats.gaussians = scene.count;
     if (scene.params) {
@@ -320,10 +342,8 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const auto entries_for = [&](uint32_t g) {
         return static_cast<uint32_t>(std::min(std::ceil(g * chunk_entries_per_gaussian), double(0x7fffffffu)));
     };
-    if (need(1, entries_for(1)) > budget)
-        throw GpuError("memory budget of " + mebibytes(budget) + " is too small for a " + std::to_string(camera.width) +
-                       "x" + std::to_string(camera.height) + " frame: even a chunk of one Gaussian needs " +
-                       mebibytes(need(1, entries_for(1))) + " (mostly per-pixel buffers); raise --memory-budget");
+    check_frame_fits(camera, need(1, entries_for(1)), render::FrameResources::image_bytes(pixels, tiles, true), budget,
+                     context.info().device_local_budget);
 
     const auto order = render::depth_order(host, render::make_camera_params(camera, settings, 0, degree, half, 0));
     const uint32_t drawable = static_cast<uint32_t>(order.size());
