@@ -38,11 +38,6 @@ fs::path contribution_file(const ClusterStageIo& io) { return io.work / "contrib
 fs::path clusters_file(const ClusterStageIo& io) { return io.work / "clusters.npy"; }
 fs::path scores_file(const ClusterStageIo& io) { return io.work / "cluster_scores.npy"; }
 
-void refuse_existing(const fs::path& path, const ClusterStageIo& io) {
-    if (io.mode == io::WriteMode::refuse_existing && fs::exists(path))
-        throw InputError(path.string(), "already exists; not overwritten (use --force to replace it)");
-}
-
 void require(const fs::path& path, const char* stage) {
     if (!fs::exists(path))
         throw InputError(path.string(), std::string("not found: run `vksplat cluster ") + stage + "` first");
@@ -141,7 +136,8 @@ void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::ve
                    const ClusterOptions& options, const std::optional<fs::path>& import_dir, const ClusterStageIo& io) {
     const fs::path dir = regions_dir(io);
     fs::create_directories(dir);
-    for (size_t view : region_views(cameras, options)) refuse_existing(dir / (view_stem(view) + ".npy"), io);
+    for (size_t view : region_views(cameras, options))
+        for (const char* extension : {".npy", ".png"}) io::check_writable(dir / (view_stem(view) + extension), io.mode);
     if (import_dir && !fs::is_directory(*import_dir)) throw InputError(import_dir->string(), "is not a folder");
     RegionSource source;
     if (import_dir) source = [&](size_t view) { return import_map(*import_dir, view, cameras[view]); };
@@ -159,9 +155,9 @@ void regions_stage(Renderer& renderer, const GaussianCloud& cloud, const std::ve
 
 void project_stage(Renderer& renderer, const gpu::Context& context, const GaussianCloud& cloud,
                    const std::vector<Camera>& cameras, const ClusterOptions& options, const ClusterStageIo& io) {
-    refuse_existing(projection_file(io), io);
-    refuse_existing(projection_views_file(io), io);
-    refuse_existing(contribution_file(io), io);
+    io::check_writable(projection_file(io), io.mode);
+    io::check_writable(projection_views_file(io), io.mode);
+    io::check_writable(contribution_file(io), io.mode);
     const std::vector<RegionView> regions = load_region_views(options, io);
     std::vector<const RegionView*> used;
     std::vector<int32_t> view_ids;
@@ -190,7 +186,7 @@ void project_stage(Renderer& renderer, const gpu::Context& context, const Gaussi
 }
 
 cluster::Clustering build_stage(const GaussianCloud& cloud, const ClusterOptions& options, const ClusterStageIo& io) {
-    refuse_existing(clusters_file(io), io);
+    io::check_writable(clusters_file(io), io.mode);
     const cluster::ViewLabels labels = load_labels(cloud.size(), io, nullptr);
     cluster::Clustering clustering = cluster_gaussians(cloud, labels, options, io.log);
     io::write_npy(clusters_file(io), clustering.cluster_of.data(), {clustering.cluster_of.size()}, io.mode);
@@ -199,7 +195,7 @@ cluster::Clustering build_stage(const GaussianCloud& cloud, const ClusterOptions
 
 cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                                    const ClusterOptions& options, const ClusterStageIo& io) {
-    refuse_existing(scores_file(io), io);
+    io::check_writable(scores_file(io), io.mode);
     std::vector<size_t> views;
     const cluster::ViewLabels labels = load_labels(cloud.size(), io, &views);
     const std::vector<int32_t> cluster_of = load_clusters(cloud.size(), io);
@@ -279,7 +275,7 @@ ClusterPruneResult write_pruned(const GaussianCloud& cloud, const std::vector<ui
 
 ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options, const fs::path& out,
                                const ClusterStageIo& io) {
-    refuse_existing(out, io);
+    io::check_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     if (options.selection.max_contribution_loss < 1 && saved.scores.contribution_raw.empty())
         throw InputError(scores_file(io).string(), "has no contribution column: run `vksplat cluster score` again, "
@@ -296,7 +292,7 @@ ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud
                                          const prune::QualityBudget& budget, const RenderSettings& settings,
                                          const fs::path& out, const ClusterStageIo& io,
                                          const std::function<void(const prune::BudgetProbe&)>& on_probe) {
-    refuse_existing(out, io);
+    io::check_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const std::vector<float> ranked_by = cluster::gaussian_scores(saved.scores, saved.cluster_of);
     const prune::Ranking ranking(ranked_by, prune::keep_all(cloud.size()));
@@ -312,7 +308,7 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
                                    const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
                                    const fs::path& out, const ClusterStageIo& io,
                                    const std::function<void(const FinetuneStatus&)>& progress) {
-    refuse_existing(out, io);
+    io::check_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
     for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);

@@ -15,10 +15,10 @@ size_t round_target(size_t n, size_t target, int round, int rounds) {
     return std::max(target, static_cast<size_t>(std::llround(double(n) * share)));
 }
 
-RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
-                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
-                                const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
-                                const std::function<void(int round, const FinetuneStatus&)>& progress) {
+namespace {
+
+// The iterations of each round; throws InputError for options no round can run with.
+uint64_t iterations_per_round(const RecoverOptions& options) {
     if (options.rounds < 1) throw InputError("--rounds " + std::to_string(options.rounds), "must be 1 or more");
     if (options.rounds > 1 && options.finetune.resume)
         throw InputError("--resume", "continues one re-fit; it cannot resume a run of several rounds");
@@ -26,8 +26,24 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
     if (per_round == 0)
         throw InputError("--recover " + std::to_string(options.iterations),
                          "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
+    return per_round;
+}
+
+}  // namespace
+
+void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos) {
+    iterations_per_round(options);
+    const FinetuneOptions& finetune = options.finetune;
+    for (size_t view : split_views(cameras, finetune.test_views, finetune.train_views).train)
+        checked_photo(photos, cameras[view]);
+}
+
+RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
+                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
+                                const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
+                                const std::function<void(int round, const FinetuneStatus&)>& progress) {
     FinetuneOptions finetune = options.finetune;
-    finetune.iterations = per_round;
+    finetune.iterations = iterations_per_round(options);
     const std::vector<size_t> train = split_views(cameras, finetune.test_views, finetune.train_views).train;
     RenderSettings settings;
     settings.background = finetune.train.background;

@@ -42,6 +42,9 @@ void check_options(const PruneOptions& options) {
         throw InputError("--max-psnr-drop " + std::to_string(budget->max_psnr_drop), "must be 0 or more (dB)");
     if (options.recover && !options.images_dir)
         throw InputError("--recover", "re-fits to the photos: give them with --images");
+    if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::QualityBudget>(options.selector))
+        throw InputError("--rounds " + std::to_string(options.recover->rounds),
+                         "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
 }
 
 // The scores, the Gaussians still in play after the lossless pass, and the totals behind both
@@ -99,26 +102,33 @@ prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCl
     return result.budget->keep;
 }
 
-// Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
-// measured; otherwise the selector's count is reached in the rounds asked for.
-GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
-                      const std::vector<Camera>& cameras, const Scored& scored, const prune::TestViews& targets,
-                      const PruneOptions& options, const PruneProgress& progress) {
+// options.recover with the job's method, views and background.
+RecoverOptions recover_options(const PruneOptions& options, const PruneResult& result) {
     RecoverOptions recover = *options.recover;
     recover.method = options.method;
     recover.finetune.test_views = result.test_views;
     recover.finetune.train_views = result.train_views;
     recover.finetune.train.background = options.settings.background;
-    const PhotoSource photos = photos_in_folder(*options.images_dir, options.settings.background);
+    return recover;
+}
+
+PhotoSource recover_photos(const PruneOptions& options) {
+    return photos_in_folder(*options.images_dir, options.settings.background);
+}
+
+// Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
+// measured; otherwise the selector's count is reached in the rounds asked for.
+GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
+                      const std::vector<Camera>& cameras, const Scored& scored, const prune::TestViews& targets,
+                      const PruneOptions& options, const PruneProgress& progress) {
+    const RecoverOptions recover = recover_options(options, result);
+    const PhotoSource photos = recover_photos(options);
     const gpu::Context& context = renderer.context();
     const prune::Ranking ranking(scored.scores, scored.candidates);
     const auto report = [&](int round, const FinetuneStatus& status) {
         if (progress.refit) progress.refit(round, status);
     };
     if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
-        if (recover.rounds != 1)
-            throw InputError("--rounds " + std::to_string(recover.rounds),
-                             "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
         prune::QualityBudget refitted = *budget;
         FinetuneOptions finetune = recover.finetune;
         finetune.iterations = recover.iterations;
@@ -147,6 +157,8 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     ViewSplit split = split_views(cameras, options.test_views, options.train_views);
     result.test_views = std::move(split.test);
     result.train_views = std::move(split.train);
+    // The re-fit's options and photos too, so that a bad one is not found after minutes of scoring.
+    if (options.recover) check_recover(recover_options(options, result), cameras, recover_photos(options));
 
     // Sanitised once here, so that scores, masks and the output all index the same Gaussians.
     GaussianCloud cloud = input;

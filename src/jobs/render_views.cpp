@@ -1,16 +1,25 @@
 #include "vksplat/jobs/render_views.hpp"
 
 #include <cstdio>
-#include <sstream>
+#include <set>
 
+#include "output_folders.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/npy.hpp"
+#include "vksplat/jobs/view_selection.hpp"
 
 namespace vksplat::jobs {
 namespace {
+
+namespace fs = std::filesystem;
+
+// The files of one view: alpha and depth empty where not asked for, photo without images_dir.
+struct ViewFiles {
+    fs::path image, alpha, depth, photo;
+};
 
 std::string format_metric(double value) {
     char text[32];
@@ -18,7 +27,7 @@ std::string format_metric(double value) {
     return text;
 }
 
-void write_metrics_csv(const std::filesystem::path& path, const RenderViewsResult& result, io::WriteMode mode) {
+void write_metrics_csv(const fs::path& path, const RenderViewsResult& result, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) {
         out << "view,name,psnr,ssim\n";
         for (const auto& v : result.views)
@@ -28,8 +37,7 @@ void write_metrics_csv(const std::filesystem::path& path, const RenderViewsResul
 }
 
 void score_against_photo(ViewResult& view, const RenderOutput& image, const Camera& camera,
-                         const std::filesystem::path& images_dir, const RenderSettings& settings) {
-    const auto photo_path = io::find_image(images_dir, camera.name);
+                         const fs::path& photo_path, const RenderSettings& settings) {
     const io::ImageRGB photo = io::read_image_rgb(photo_path, settings.background);
     if (photo.width != image.width || photo.height != image.height)
         throw InputError(photo_path.string(), "photo is " + std::to_string(photo.width) + "x" +
@@ -42,13 +50,25 @@ void score_against_photo(ViewResult& view, const RenderOutput& image, const Came
 
 }  // namespace
 
-std::string output_stem(const Camera& camera, size_t index) {
-    if (camera.name.empty()) {
-        char text[32];
-        std::snprintf(text, sizeof(text), "view_%04zu", index);
-        return text;
+std::vector<std::string> output_stems(const std::vector<Camera>& cameras) {
+    std::vector<std::string> stems;
+    for (size_t i = 0; i < cameras.size(); ++i) {
+        char unnamed[32];
+        std::snprintf(unnamed, sizeof(unnamed), "view_%04zu", i);
+        stems.push_back(cameras[i].name.empty() ? unnamed : fs::path(cameras[i].name).stem().string());
     }
-    return std::filesystem::path(camera.name).stem().string();
+    // Plain stems first, so that no "-2" takes the name another camera has by itself.
+    std::set<std::string> taken(stems.begin(), stems.end());
+    std::set<std::string> given;
+    for (std::string& stem : stems) {
+        if (given.insert(stem).second) continue;
+        std::string copy;
+        for (int number = 2; taken.count(copy = stem + '-' + std::to_string(number)); ++number) {}
+        stem = copy;
+        taken.insert(stem);
+        given.insert(stem);
+    }
+    return stems;
 }
 
 RenderViewsResult render_views(Renderer& renderer, const std::vector<Camera>& cameras,
@@ -58,31 +78,64 @@ RenderViewsResult render_views(Renderer& renderer, const std::vector<Camera>& ca
     std::vector<size_t> views = options.views;
     if (views.empty())
         for (size_t i = 0; i < cameras.size(); ++i) views.push_back(i);
-    std::filesystem::create_directories(options.out_dir);
+    check_view_indices(views, cameras.size());
+    std::set<size_t> named;
+    for (size_t view : views)
+        if (!named.insert(view).second)
+            throw InputError("view " + std::to_string(view), "is named twice; each view is rendered once");
+
+    // Every file and photo, known and checked before the first render.
+    const std::vector<std::string> stems = output_stems(cameras);
+    std::vector<ViewFiles> files;
+    std::vector<fs::path> inputs = options.inputs;
+    for (size_t index : views) {
+        ViewFiles view;
+        const fs::path stem = options.out_dir / stems[index];
+        view.image = fs::path(stem) += ".png";
+        if (options.write_alpha) view.alpha = fs::path(stem) += ".alpha.png";
+        if (options.write_depth) view.depth = fs::path(stem) += ".depth.npy";
+        if (options.images_dir) inputs.push_back(view.photo = io::find_image(*options.images_dir, cameras[index].name));
+        files.push_back(view);
+    }
+    const fs::path metrics_csv = options.out_dir / "metrics.csv";
+    OutputFolders folders;
+    folders.create(options.out_dir);
+    std::set<fs::path> outputs;
+    const auto check = [&](const fs::path& path) {
+        if (path.empty()) return;
+        if (!outputs.insert(path).second)
+            throw InputError(path.string(), "would be written twice: the cameras' names give two files this name");
+        io::refuse_input_as_output(path, inputs);
+        io::check_writable(path, options.mode);
+    };
+    for (const ViewFiles& view : files)
+        for (const fs::path* path : {&view.image, &view.alpha, &view.depth}) check(*path);
+    if (options.images_dir) check(metrics_csv);
 
     RenderViewsResult result;
     result.has_metrics = options.images_dir.has_value();
     for (size_t done = 0; done < views.size(); ++done) {
         const size_t index = views[done];
-        if (index >= cameras.size())
-            throw InputError("view " + std::to_string(index), "there are only " + std::to_string(cameras.size()) +
-                                                                  " cameras");
         const Camera& camera = cameras[index];
+        const ViewFiles& out = files[done];
         const RenderOutput image = renderer.render(camera, options.settings);
 
         ViewResult view;
         view.index = index;
-        view.name = output_stem(camera, index);
+        view.name = stems[index];
         view.gpu_milliseconds = renderer.last_frame().gpu_milliseconds;
-        view.image = options.out_dir / (view.name + ".png");
-        io::write_png_rgb(view.image, image.width, image.height, image.rgb.data(), options.bit_depth, options.mode);
-        if (options.write_alpha)
-            io::write_png_gray16(options.out_dir / (view.name + ".alpha.png"), image.width, image.height,
-                                 image.alpha.data(), options.mode);
-        if (options.write_depth)
-            io::write_npy(options.out_dir / (view.name + ".depth.npy"), image.depth.data(),
-                          {size_t(image.height), size_t(image.width)}, options.mode);
-        if (options.images_dir) score_against_photo(view, image, camera, *options.images_dir, options.settings);
+        view.image = out.image;
+        io::write_png_rgb(out.image, image.width, image.height, image.rgb.data(), options.bit_depth, options.mode);
+        result.files.push_back(out.image);
+        if (!out.alpha.empty()) {
+            io::write_png_gray16(out.alpha, image.width, image.height, image.alpha.data(), options.mode);
+            result.files.push_back(out.alpha);
+        }
+        if (!out.depth.empty()) {
+            io::write_npy(out.depth, image.depth.data(), {size_t(image.height), size_t(image.width)}, options.mode);
+            result.files.push_back(out.depth);
+        }
+        if (options.images_dir) score_against_photo(view, image, camera, out.photo, options.settings);
         result.views.push_back(view);
         if (progress) progress(done + 1, views.size());
     }
@@ -93,8 +146,9 @@ RenderViewsResult render_views(Renderer& renderer, const std::vector<Camera>& ca
         }
         result.mean_psnr /= double(result.views.size());
         result.mean_ssim /= double(result.views.size());
-        result.metrics_csv = options.out_dir / "metrics.csv";
+        result.metrics_csv = metrics_csv;
         write_metrics_csv(result.metrics_csv, result, options.mode);
+        result.files.push_back(result.metrics_csv);
     }
     return result;
 }

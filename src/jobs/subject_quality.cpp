@@ -9,6 +9,7 @@
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/image.hpp"
+#include "vksplat/jobs/render_views.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -62,7 +63,7 @@ std::vector<float> region_panel(const std::vector<float>& rgb, const std::vector
     return out;
 }
 
-void write_sheet(const SubjectSheets& sheets, const Camera& camera, const RenderOutput& unpruned,
+void write_sheet(const SubjectSheets& sheets, const std::string& stem, const RenderOutput& unpruned,
                  const RenderOutput& pruned, const std::vector<uint8_t>& mask, const std::vector<float>* photo) {
     const int w = pruned.width, h = pruned.height;
     std::vector<eval::SheetPanel> panels;
@@ -74,8 +75,7 @@ void write_sheet(const SubjectSheets& sheets, const Camera& camera, const Render
     panels.push_back(eval::heat_map_panel(pruned.rgb.data(), target.data(), w, h, sheets.max_error,
                                           photo ? "pruned vs photo" : "pruned vs unpruned"));
     std::filesystem::create_directories(sheets.dir);
-    eval::write_comparison_sheet(sheets.dir / (std::filesystem::path(camera.name).stem().string() + "_subject.png"),
-                                 panels, sheets.mode);
+    eval::write_comparison_sheet(sheets.dir / (stem + "_subject.png"), panels, sheets.mode);
 }
 
 }  // namespace
@@ -129,6 +129,7 @@ SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& 
             photos.push_back(std::move(photo.rgb));
         }
 
+    const std::vector<std::string> stems = output_stems(test_cameras);
     SubjectQuality q;
     ScoreSums against_unpruned, before, after;
     renderer.set_scene(pruned);
@@ -141,7 +142,7 @@ SubjectQuality measure_subject_quality(Renderer& renderer, const GaussianCloud& 
         q.subject_fraction += double(inside) / double(mask.size());
         q.views_without_subject += inside == 0;
         against_unpruned.add(image.rgb, reference.rgb, mask, image.width, image.height);
-        if (sheets) write_sheet(*sheets, test_cameras[v], reference, image, mask, photos.empty() ? nullptr : &photos[v]);
+        if (sheets) write_sheet(*sheets, stems[v], reference, image, mask, photos.empty() ? nullptr : &photos[v]);
         if (photos.empty()) continue;
         before.add(reference.rgb, photos[v], mask, image.width, image.height);
         after.add(image.rgb, photos[v], mask, image.width, image.height);

@@ -12,6 +12,7 @@
 #include <optional>
 #include <string>
 
+#include "output_folders.hpp"
 #include "sweep_parts.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/comparison_sheet.hpp"
@@ -31,7 +32,8 @@ namespace fs = std::filesystem;
 using sweep_detail::Targets;
 
 // What the sweep writes into out_dir; any of them there already means an earlier sweep's results.
-const char* const kOutputs[] = {"sweep.csv", "sh_degrees.csv", "totals.npy", "report.html", "charts", "sheets"};
+const char* const kOutputFiles[] = {"sweep.csv", "sh_degrees.csv", "totals.npy", "report.html"};
+const char* const kOutputFolders[] = {"charts", "sheets"};
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -41,12 +43,6 @@ void check_options(const SweepOptions& options, size_t camera_count) {
     if (options.out_dir.empty()) throw InputError("sweep", "no output folder given");
     if (fs::exists(options.out_dir) && !fs::is_directory(options.out_dir))
         throw InputError(options.out_dir.string(), "is not a folder");
-    if (options.mode == io::WriteMode::refuse_existing)
-        for (const char* name : kOutputs)
-            if (fs::exists(options.out_dir / name))
-                throw InputError((options.out_dir / name).string(),
-                                 "already exists (results of an earlier sweep?); not overwritten (ask for overwrite "
-                                 "to replace them)");
     if (options.images_dir.empty()) throw InputError("sweep", "no photos given: the sweep measures against them");
     if (!fs::is_directory(options.images_dir))
         throw InputError(options.images_dir.string(), "is not a folder of photos");
@@ -61,6 +57,18 @@ void check_options(const SweepOptions& options, size_t camera_count) {
             if (view >= camera_count)
                 throw InputError("view " + std::to_string(view),
                                  "there are only " + std::to_string(camera_count) + " cameras");
+}
+
+// The outputs in out_dir (which exists): none there from an earlier sweep unless overwriting,
+// and the folder writable.
+void check_outputs(const SweepOptions& options) {
+    for (const char* name : kOutputFiles) io::check_writable(options.out_dir / name, options.mode);
+    if (options.mode == io::WriteMode::refuse_existing)
+        for (const char* name : kOutputFolders)
+            if (fs::exists(options.out_dir / name))
+                throw InputError((options.out_dir / name).string(),
+                                 "already exists (results of an earlier sweep?); not overwritten (--force replaces "
+                                 "them)");
 }
 
 std::vector<prune::ScoreMethod> methods_of(const SweepOptions& options) {
@@ -164,19 +172,25 @@ std::vector<double> swept_sheet_fractions(const SweepOptions& options, const std
     return chosen;
 }
 
+// prune --recover's schedule on the sweep's views; each row sets the ranking method.
+RecoverOptions recover_schedule(const SweepResult& result, const SweepOptions& options) {
+    RecoverOptions recover;
+    recover.iterations = options.recover_iterations;
+    recover.rounds = options.recover_rounds;
+    recover.finetune.train_views = result.train_views;
+    recover.finetune.test_views = result.test_views;
+    recover.finetune.train.background = options.settings.background;
+    recover.finetune.train.sh_degree = options.settings.max_sh_degree;
+    return recover;
+}
+
 // The row of `pruned` (cut from `ranking` at `keep`) re-fitted with prune --recover's schedule.
 SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking, size_t keep,
                      const std::string& method, const SweepRow& pruned, const std::vector<Camera>& cameras,
                      const PhotoSource& photos, const Targets& targets, const SweepResult& result,
                      const SweepOptions& options) {
-    RecoverOptions recover;
-    recover.iterations = options.recover_iterations;
-    recover.rounds = options.recover_rounds;
+    RecoverOptions recover = recover_schedule(result, options);
     recover.method = method == kClusterMethod ? prune::ScoreMethod::blend : prune::parse_score_method(method);
-    recover.finetune.train_views = result.train_views;
-    recover.finetune.test_views = result.test_views;
-    recover.finetune.train.background = options.settings.background;
-    recover.finetune.train.sh_degree = options.settings.max_sh_degree;
     const auto start = std::chrono::steady_clock::now();
     const RecoverResult refit = prune_and_recover(renderer.context(), renderer, cloud, ranking,
                                                   std::min(keep, ranking.candidates()), cameras, photos, recover);
@@ -243,21 +257,29 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     result.train_views = spread_views(split.train, options.max_train_views);
     std::vector<Camera> test_cameras;
     std::vector<std::string> stems;
+    const std::vector<std::string> camera_stems = output_stems(cameras);
     for (size_t view : result.test_views) {
         test_cameras.push_back(cameras[view]);
-        stems.push_back(output_stem(cameras[view], view));
+        stems.push_back(camera_stems[view]);
         result.test_view_names.push_back(cameras[view].name.empty() ? stems.back() : cameras[view].name);
     }
+    // Made first, for check_outputs; removed again unless something is written into it.
+    OutputFolders folders;
+    folders.create(options.out_dir);
+    check_outputs(options);
 
     // Sanitised once here, so that totals, scores and masks all index the same Gaussians.
     GaussianCloud cloud = input;
     result.sanitize = sanitize(cloud);
-    // Photos first: a missing one is reported before the long part.
+    // Photos first, the re-fits' too: a missing one is reported before the long part.
+    std::optional<PhotoSource> photos;
+    if (options.recover_iterations > 0) {
+        photos = photos_in_folder(options.images_dir, options.settings.background);
+        check_recover(recover_schedule(result, options), cameras, *photos);
+    }
     const char* const unpruned_stage = "photos and the unpruned scene";
     if (progress.step) progress.step(unpruned_stage, 0, 2);
     const Targets targets = make_targets(renderer, cloud, test_cameras, options);
-    fs::create_directories(options.out_dir / "charts");
-    fs::create_directories(options.out_dir / "sheets");
     if (progress.step) progress.step(unpruned_stage, 1, 2);
     result.unpruned = sweep_detail::measure_model(renderer, cloud, targets, options);
     if (progress.step) progress.step(unpruned_stage, 2, 2);
@@ -278,8 +300,6 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     // Every fraction the lossless pass alone covers keeps the same model, whatever the method.
     std::optional<ModelMeasure> lossless_only;
     const size_t total_rows = (methods.size() + (options.cluster ? 1 : 0)) * fractions.size();
-    std::optional<PhotoSource> photos;
-    if (options.recover_iterations > 0) photos = photos_in_folder(options.images_dir, options.settings.background);
     const auto sweep_ranking = [&](const std::string& method, const prune::Ranking& ranking) {
         std::vector<SweepRow> recovered;
         for (double fraction : fractions) {
@@ -332,6 +352,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             ? prune::Ranking(cluster_scores, candidates)
             : prune::Ranking(prune::score(cloud, totals, prune::parse_score_method(result.best_method), options.seed),
                              candidates);
+    folders.create(options.out_dir / "sheets");
+    folders.create(options.out_dir / "charts");
     result.sheets = write_sheets(renderer, cloud, best_ranking, result.best_method, result.sheet_fractions, targets,
                                  options, stems, progress);
 

@@ -353,6 +353,81 @@ TEST_F(Sweep, RefusesBadOptionsAndEarlierResultsBeforeAnyWork) {
         << "the first run's results are not overwritten unless asked";
 }
 
+// --recover's photos and options are checked before the training views are scored, which takes
+// minutes on a real scene: a bad photo found after would waste them.
+TEST_F(Sweep, RecoverChecksItsPhotosAndOptionsBeforeScoring) {
+    auto quick = options(dir / "out");
+    quick.methods = {prune::ScoreMethod::blend};
+    quick.fractions = {0, 0.8};
+    quick.compare_scoring_cost = false;
+    quick.test_views = {0, 1};  // views 2-4 are the training views, whose photos only the re-fit reads
+    quick.recover_iterations = 60;
+    quick.recover_rounds = 1;
+    bool scored = false;
+    jobs::SweepProgress progress;
+    progress.step = [&](const std::string& stage, size_t, size_t) { scored |= stage == "scoring the training views"; };
+
+    const std::vector<float> grey(32 * 32 * 3, 0.5f);
+    io::write_png_rgb(dir / "photos" / "view_3.png", 32, 32, grey.data(), 8, io::WriteMode::overwrite);
+    try {
+        jobs::sweep_scene(*renderer, cloud, cameras, quick, progress);
+        ADD_FAILURE() << "a training photo of the wrong size must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("view_3"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(scored) << "refused only after scoring";
+
+    renderer->set_scene(cloud);
+    const RenderOutput photo = renderer->render(cameras[3]);
+    io::write_png_rgb(dir / "photos" / "view_3.png", photo.width, photo.height, photo.rgb.data(), 8,
+                      io::WriteMode::overwrite);
+    quick.recover_iterations = 2;
+    quick.recover_rounds = 3;
+    scored = false;
+    try {
+        jobs::sweep_scene(*renderer, cloud, cameras, quick, progress);
+        ADD_FAILURE() << "2 iterations in 3 rounds must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("rounds"), std::string::npos) << e.what();
+    }
+    EXPECT_FALSE(scored);
+}
+
+// A sweep that is refused or fails leaves none of the folders it made (and keeps those it did not
+// make); a finished one leaves no empty folder either.
+TEST_F(Sweep, LeavesNoEmptyFoldersBehind) {
+    const fs::path out = dir / "new" / "out";
+    auto quick = options(out);
+    quick.methods = {prune::ScoreMethod::blend};
+    quick.fractions = {0, 0.5};
+    quick.compare_scoring_cost = false;
+    jobs::SweepProgress failing;
+    failing.step = [](const std::string& stage, size_t, size_t) {
+        if (stage == "scoring the training views") throw std::runtime_error("interrupted");
+    };
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick, failing), std::runtime_error);
+    EXPECT_FALSE(fs::exists(dir / "new"));
+
+    fs::create_directories(out);
+    EXPECT_THROW(jobs::sweep_scene(*renderer, cloud, cameras, quick, failing), std::runtime_error);
+    EXPECT_TRUE(fs::is_directory(out)) << "a folder the sweep did not make stays";
+    EXPECT_TRUE(fs::is_empty(out));
+
+    std::ofstream(out / "sh_degrees.csv") << "mine";
+    try {
+        jobs::sweep_scene(*renderer, cloud, cameras, quick);
+        ADD_FAILURE() << "an earlier result must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("--force"), std::string::npos) << e.what();
+    }
+    fs::remove(out / "sh_degrees.csv");
+
+    quick.fractions = {0};  // no sheet fraction swept: no sheets
+    jobs::sweep_scene(*renderer, cloud, cameras, quick);
+    EXPECT_TRUE(fs::exists(out / "sweep.csv"));
+    EXPECT_FALSE(fs::exists(out / "sheets")) << "no empty sheets folder";
+}
+
 // Cluster pruning as a sweep method: its rows sit beside the per-Gaussian ones at the same kept
 // counts, in sweep.csv, the charts and the report.
 TEST_F(Sweep, ClusterPruningIsAMethodAtTheSameKeptCounts) {

@@ -41,6 +41,7 @@ int run_render(const RenderArgs& args) {
     options.write_depth = args.depth;
     if (!args.images.empty()) options.images_dir = args.images;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    options.inputs = {args.scene, args.cameras};
 
     std::fprintf(stderr, "rendering %zu Gaussians on %s\n", renderer.scene_size(), context.info().name.c_str());
     ProgressLine progress("rendered");
@@ -50,7 +51,7 @@ int run_render(const RenderArgs& args) {
         progress.update(done, total);
     });
     chunks.print(context);
-    std::printf("wrote %zu views to %s\n", result.views.size(), args.out.c_str());
+    std::printf("wrote %zu views (%zu files) to %s\n", result.views.size(), result.files.size(), args.out.c_str());
     if (result.has_metrics)
         std::printf("mean PSNR %.3f dB, mean SSIM %.4f over %zu views (%s)\n", result.mean_psnr, result.mean_ssim,
                     result.views.size(), result.metrics_csv.c_str());
@@ -63,7 +64,10 @@ void register_render(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("render", "render a scene from a set of cameras");
     command->footer(
         "Example:\n  vksplat render lego/point_cloud.ply --cameras lego/cameras.json --out renders \\\n"
-        "      --views 0-12 --background 1,1,1 --images lego/images");
+        "      --views 0-12 --background 1,1,1 --images lego/images\n"
+        "Files are named after the cameras' images: x.png (x.alpha.png, x.depth.npy). Where two cameras\n"
+        "give one name (x.jpg twice, or a/x.jpg and b/x.jpg), the first in the camera file keeps x.png and\n"
+        "the next get x-2.png, x-3.png, ..., whichever views are rendered.");
     auto args = std::make_shared<RenderArgs>();
     command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")

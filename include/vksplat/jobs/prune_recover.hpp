@@ -38,6 +38,12 @@ struct RecoverResult {
 // The kept count of round r (1-based) of `rounds` from n Gaussians down to `target`: n (target/n)^(r/rounds).
 size_t round_target(size_t n, size_t target, int round, int rounds);
 
+// What prune_and_recover would refuse, found without its work: rounds < 1, a resume of several
+// rounds, no iterations per round, and a missing or mis-sized photo of a training view (each read
+// through checked_photo). For commands to call before they score the views, which takes minutes on
+// a real scene, so that a bad photo is not found only after.
+void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos);
+
 // `ranking` ranks the Gaussians of `cloud` (the unpruned model) for the first round; `keep` is
 // the final count. Throws InputError for rounds < 1 or no iterations per round.
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,

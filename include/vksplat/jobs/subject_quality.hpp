@@ -45,9 +45,10 @@ struct SubjectQuality {
     size_t views_without_subject = 0;                 // test views whose region is empty
 };
 
-// Where comparison sheets go: one PNG per test view, <camera name stem>_subject.png, of photo |
-// unpruned | pruned | the subject region (the unpruned render, dimmed outside it) | the pruned
-// render's error against the photo (else the unpruned render), max_error at the top of the ramp.
+// Where comparison sheets go: one PNG per test view, <stem>_subject.png (the test cameras'
+// output_stems, jobs/render_views.hpp), of photo | unpruned | pruned | the subject region (the
+// unpruned render, dimmed outside it) | the pruned render's error against the photo (else the
+// unpruned render), max_error at the top of the ramp.
 struct SubjectSheets {
     std::filesystem::path dir;
     float max_error = 0.25f;

@@ -144,7 +144,9 @@ std::string best_method(const std::vector<SweepRow>& rows);
 
 // Runs the sweep and writes its files into options.out_dir (created if missing). Refuses, before
 // any work, an out_dir that already holds a sweep's files (unless options.mode says overwrite),
-// missing photos, fractions outside [0, 1] and view indices out of range.
+// missing photos (with recover_iterations, the training views' too, and re-fit options no round
+// can run with), fractions outside [0, 1] and view indices out of range. The folders it makes are
+// removed again where they stay empty, also when it is refused or fails.
 SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                         const SweepOptions& options, const SweepProgress& progress = {});
 

@@ -1,0 +1,103 @@
+// prune --recover checks its photos and options before it scores the training views, which takes
+// minutes on a real scene: a missing photo found after the scoring would waste them.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
+
+namespace vksplat::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RecoverChecks : public GpuTest {
+protected:
+    void SetUp() override {
+        dir = fresh_test_dir("vksplat_recover_checks_");
+        fs::create_directories(dir / "photos");
+        renderer = std::make_unique<Renderer>(context());
+        cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
+        cameras = row_of_five_views();
+        renderer->set_scene(cloud);
+        for (const Camera& camera : cameras) {
+            const RenderOutput image = renderer->render(camera);
+            io::write_png_rgb(dir / "photos" / (camera.name + ".png"), image.width, image.height, image.rgb.data(), 8);
+        }
+    }
+    void TearDown() override {
+        fs::remove_all(dir);
+        GpuTest::TearDown();
+    }
+    // Views 0 and 1 held out: the photos of 2-4 are read by the re-fit alone.
+    jobs::PruneOptions recover_options() const {
+        jobs::PruneOptions o;
+        o.selector = jobs::DropRatio{0.5};
+        o.out = dir / "out.ply";
+        o.images_dir = dir / "photos";
+        o.test_views = {0, 1};
+        jobs::RecoverOptions recover;
+        recover.iterations = 6;
+        recover.rounds = 1;
+        o.recover = recover;
+        return o;
+    }
+    // Runs the job and returns its refusal's message; records whether it started scoring.
+    std::string refusal(const jobs::PruneOptions& options) {
+        scored = false;
+        jobs::PruneProgress progress;
+        progress.scoring = [this](size_t, size_t) { scored = true; };
+        try {
+            jobs::prune_scene(*renderer, cloud, cameras, options, progress);
+        } catch (const InputError& e) {
+            return e.what();
+        }
+        ADD_FAILURE() << "not refused";
+        return {};
+    }
+    fs::path dir;
+    std::unique_ptr<Renderer> renderer;
+    GaussianCloud cloud;
+    std::vector<Camera> cameras;
+    bool scored = false;
+};
+
+TEST_F(RecoverChecks, TrainingPhotosBeforeScoring) {
+    const std::vector<float> grey(32 * 32 * 3, 0.5f);
+    io::write_png_rgb(dir / "photos" / "view_3.png", 32, 32, grey.data(), 8, io::WriteMode::overwrite);
+    const std::string wrong_size = refusal(recover_options());
+    EXPECT_NE(wrong_size.find("view_3"), std::string::npos) << wrong_size;
+    EXPECT_NE(wrong_size.find("32x32"), std::string::npos) << wrong_size;
+    EXPECT_FALSE(scored) << "refused only after scoring";
+
+    fs::remove(dir / "photos" / "view_3.png");
+    const std::string missing = refusal(recover_options());
+    EXPECT_NE(missing.find("view_3"), std::string::npos) << missing;
+    EXPECT_FALSE(scored) << "refused only after scoring";
+}
+
+TEST_F(RecoverChecks, OptionsBeforeScoring) {
+    auto too_few = recover_options();
+    too_few.recover->iterations = 2;
+    too_few.recover->rounds = 3;
+    const std::string rounds = refusal(too_few);
+    EXPECT_NE(rounds.find("--recover 2"), std::string::npos) << rounds;
+    EXPECT_FALSE(scored) << "refused only after scoring";
+
+    auto budget = recover_options();
+    budget.selector = prune::QualityBudget{};
+    budget.recover->rounds = 3;
+    const std::string budget_rounds = refusal(budget);
+    EXPECT_NE(budget_rounds.find("--rounds 3"), std::string::npos) << budget_rounds;
+    EXPECT_FALSE(scored) << "refused only after scoring";
+}
+
+}  // namespace
+}  // namespace vksplat::test
