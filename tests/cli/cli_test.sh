@@ -241,5 +241,54 @@ expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$v
 expect bad-view-list 2 "view 4 does not exist" -- "$vksplat" render "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --out "$work/w" --views 0,4
 
+# Render, prune --recover and sweep: every output checked and named before any work (issue 27).
+# A view asked for twice is refused; cameras whose names collide get x.png, x-2.png, x-3.png; no
+# file is written before all are checked; no output is a photo, --force or not; a refused render
+# or sweep leaves no folder; a frame larger than any budget says what its pixels need; the
+# re-fit's photos and rounds are checked before the views are scored.
+expect render-view-twice 2 "view 0: is named twice" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --out "$work/twice" --views 0,0
+[ ! -e "$work/twice" ] && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: render left $work/twice"; }
+sed -e 's/"img_name": "a"/"img_name": "left\/x.jpg"/' -e 's/"img_name": "b"/"img_name": "right\/x.jpg"/' \
+  -e 's/"img_name": "c"/"img_name": "x"/' "$work/three.json" >"$work/same_names.json"
+expect render-same-names 0 "wrote 3 views (3 files)" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/same_names.json" --out "$work/same_names"
+[ -f "$work/same_names/x.png" ] && [ -f "$work/same_names/x-2.png" ] && [ -f "$work/same_names/x-3.png" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: x.png, x-2.png, x-3.png not all written"; }
+expect render-help-says-how-names-collide 0 "x-2.png" -- "$vksplat" render --help
+mkdir -p "$work/half_done" && echo mine >"$work/half_done/c.alpha.png"
+expect render-checks-every-output-first 2 "c.alpha.png: already exists; not overwritten (--force replaces it)" -- \
+  "$vksplat" render "$work/demo/demo.ply" --cameras "$work/three.json" --out "$work/half_done" --alpha
+[ ! -e "$work/half_done/a.png" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: render wrote a.png before refusing c.alpha.png"; }
+cp "$work/photos3/a.png" "$work/photo_a.copy"
+expect render-over-its-photos 2 "a.png: is an input of this command" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --out "$work/photos3" --images "$work/photos3" --force
+cmp -s "$work/photos3/a.png" "$work/photo_a.copy" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: render wrote over its photo a.png"; }
+sed -e 's/"width": 80/"width": 16384/' -e 's/"height": 60/"height": 16384/' "$work/cameras.json" >"$work/huge.json"
+expect render-frame-says-what-its-pixels-need any-failure "however the Gaussians are chunked (its per-pixel buffers: " \
+  -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/huge.json" --out "$work/huge" --memory-budget 1000
+mkdir -p "$work/photos_ab" && cp "$work/photos3/a.png" "$work/photos3/b.png" "$work/photos_ab/"
+output=$("$vksplat" prune "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 \
+  --recover 6 --test-views 0,1 --images "$work/photos_ab" -o "$work/recover_no_c.ply" 2>&1)
+if [ $? -eq 2 ] && grep -qF "no image for camera 'c'" <<<"$output" && ! grep -q "scored views" <<<"$output"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: prune --recover scored before finding the missing photo"
+  echo "$output" | sed 's/^/    /' | tail -n 5
+fi
+output=$("$vksplat" sweep "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" \
+  --out "$work/sweep_refused/out" --methods blend --fractions 0.5 --recover 2 --recover-rounds 3 --timing-reps 0 2>&1)
+if [ $? -eq 2 ] && grep -qF "leaves no iterations for each of 3 rounds" <<<"$output" &&
+   ! grep -q "scoring" <<<"$output" && [ ! -e "$work/sweep_refused" ]; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: sweep --recover scored before refusing its rounds, or left a folder"
+  echo "$output" | sed 's/^/    /' | tail -n 5
+fi
+expect sweep-refusal-names-force 2 "(--force replaces it)" -- "$vksplat" sweep "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
+
 echo "cli: $passed passed, $failed failed"
 [ $failed -eq 0 ]
