@@ -1,5 +1,7 @@
 #include "vksplat/jobs/render_views.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <set>
 
@@ -36,14 +38,27 @@ void write_metrics_csv(const fs::path& path, const RenderViewsResult& result, io
     });
 }
 
+void refuse_other_size(const fs::path& photo_path, int width, int height, const Camera& camera) {
+    if (width != camera.width || height != camera.height)
+        throw InputError(photo_path.string(), "photo is " + std::to_string(width) + "x" + std::to_string(height) +
+                                                  " but camera '" + camera.name + "' renders " +
+                                                  std::to_string(camera.width) + "x" + std::to_string(camera.height));
+}
+
+// PNG and JPEG photos are measured from their headers before the first render, so that a photo of
+// the wrong size is refused before any view is written; other formats are checked when decoded.
+void check_photo_size_early(const fs::path& photo_path, const Camera& camera) {
+    std::string extension = photo_path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
+    if (extension != ".png" && extension != ".jpg" && extension != ".jpeg") return;
+    const auto [width, height] = io::read_image_size(photo_path);
+    refuse_other_size(photo_path, width, height, camera);
+}
+
 void score_against_photo(ViewResult& view, const RenderOutput& image, const Camera& camera,
                          const fs::path& photo_path, const RenderSettings& settings) {
     const io::ImageRGB photo = io::read_image_rgb(photo_path, settings.background);
-    if (photo.width != image.width || photo.height != image.height)
-        throw InputError(photo_path.string(), "photo is " + std::to_string(photo.width) + "x" +
-                                                  std::to_string(photo.height) + " but camera '" + camera.name +
-                                                  "' renders " + std::to_string(image.width) + "x" +
-                                                  std::to_string(image.height));
+    refuse_other_size(photo_path, photo.width, photo.height, camera);
     view.psnr = eval::psnr(image.rgb.data(), photo.rgb.data(), image.width, image.height);
     view.ssim = eval::ssim(image.rgb.data(), photo.rgb.data(), image.width, image.height);
 }
@@ -94,7 +109,10 @@ RenderViewsResult render_views(Renderer& renderer, const std::vector<Camera>& ca
         view.image = fs::path(stem) += ".png";
         if (options.write_alpha) view.alpha = fs::path(stem) += ".alpha.png";
         if (options.write_depth) view.depth = fs::path(stem) += ".depth.npy";
-        if (options.images_dir) inputs.push_back(view.photo = io::find_image(*options.images_dir, cameras[index].name));
+        if (options.images_dir) {
+            inputs.push_back(view.photo = io::find_image(*options.images_dir, cameras[index].name));
+            check_photo_size_early(view.photo, cameras[index]);
+        }
         files.push_back(view);
     }
     const fs::path metrics_csv = options.out_dir / "metrics.csv";

@@ -113,6 +113,22 @@ TEST_F(RenderViews, PhotoOfTheWrongSizeIsNamed) {
     }
 }
 
+// The last view's photo is of the wrong size: refused before the first view is written.
+TEST_F(RenderViews, APhotoOfTheWrongSizeIsRefusedBeforeAnyViewIsWritten) {
+    jobs::RenderViewsOptions photos;
+    photos.out_dir = dir / "photos";
+    jobs::render_views(*renderer, cameras, photos);
+    jobs::RenderViewsOptions small = photos;
+    small.out_dir = dir / "small";
+    jobs::render_views(*renderer, make_orbit_cameras(3, 32, 32, 4.0, 25.0), small);
+    fs::copy_file(small.out_dir / "orbit_002.png", photos.out_dir / "orbit_002.png", fs::copy_options::overwrite_existing);
+    jobs::RenderViewsOptions options;
+    options.out_dir = dir / "out";
+    options.images_dir = photos.out_dir;
+    EXPECT_THROW(jobs::render_views(*renderer, cameras, options), InputError);
+    EXPECT_FALSE(fs::exists(options.out_dir / "orbit_000.png"));
+}
+
 TEST_F(RenderViews, MissingPhotoIsNamed) {
     jobs::RenderViewsOptions options;
     options.out_dir = dir / "out";
