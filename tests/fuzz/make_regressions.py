@@ -183,9 +183,10 @@ def long1(value):
 def checkpoint(pickle_bytes, storages=(), method=zipfile.ZIP_STORED):
     buffer = BytesIO()
     with zipfile.ZipFile(buffer, "w", method) as archive:
-        archive.writestr("ckpt/data.pkl", pickle_bytes)
-        for index, storage in enumerate(storages):
-            archive.writestr(f"ckpt/data/{index}", storage)
+        entries = [("ckpt/data.pkl", pickle_bytes)] + [(f"ckpt/data/{i}", s) for i, s in enumerate(storages)]
+        for name, data in entries:
+            # A fixed time stamp, so that the files come out the same every time.
+            archive.writestr(zipfile.ZipInfo(name, date_time=(1980, 1, 1, 0, 0, 0)), data, compress_type=method)
     return buffer.getvalue()
 
 
