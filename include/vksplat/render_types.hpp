@@ -12,6 +12,12 @@ struct RenderSettings {
     // Also measure, per Gaussian, what it contributed to this view (RenderOutput::stats). Costs
     // atomics in the blend pass, so plain rendering leaves it off and pays nothing for it.
     bool gather_stats = false;
+
+    // Throws InputError naming the background unless each channel is a finite number in [0, 1]:
+    // it shows wherever the splats leave light through, so a NaN or out-of-range channel would
+    // silently colour (or, once written as a picture, clamp) every such pixel. Every GPU frame,
+    // rendered or trained, checks its settings with this.
+    void validate() const;
 };
 
 // What each Gaussian did in one view, indexed like the cloud given to the renderer (Gaussians

@@ -19,6 +19,9 @@ ImageExtent image_extent(const Camera& camera) {
 
 CameraParams make_camera_params(const Camera& camera, const RenderSettings& settings, uint32_t gaussian_count,
                                 int scene_sh_degree, bool scene_half_sh, uint32_t entry_capacity) {
+    // Every frame's parameters, the renderer's and training's alike, are made here: the one place
+    // that sees every background.
+    settings.validate();
     CameraParams p{};
     float* rows[3] = {p.view_row0, p.view_row1, p.view_row2};
     for (int r = 0; r < 3; ++r) {

@@ -2,6 +2,10 @@
 // cameras, statistics.
 #include <gtest/gtest.h>
 
+#include <array>
+#include <limits>
+#include <string>
+
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/error.hpp"
@@ -79,6 +83,31 @@ TEST_F(RendererTest, RejectsInvalidCameras) {
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("zero focal"), std::string::npos) << e.what();
     }
+}
+
+// The background shows wherever light gets through: NaN would spread into every such pixel and
+// a value outside [0, 1] would be clamped away unseen when written, so neither renders.
+TEST_F(RendererTest, RejectsABackgroundThatIsNotAColour) {
+    Renderer renderer(context());
+    renderer.set_scene(random_scene(24, 10, 0));
+    const Camera camera = forward_camera(64, 64, 60.0);
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    for (const auto& background : {std::array<float, 3>{nan, 0, 0}, std::array<float, 3>{0, inf, 0},
+                                   std::array<float, 3>{2, 0, 0}, std::array<float, 3>{0, 0, -0.5f}}) {
+        RenderSettings settings;
+        settings.background = background;
+        try {
+            renderer.render(camera, settings);
+            ADD_FAILURE() << "rendered on background " << background[0] << ", " << background[1] << ", " << background[2];
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find("background ("), std::string::npos) << e.what();
+            EXPECT_NE(std::string(e.what()).find("each channel must be a finite number in [0, 1]"), std::string::npos)
+                << e.what();
+        }
+    }
+    RenderSettings white;
+    white.background = {1, 1, 1};
+    EXPECT_NO_THROW(renderer.render(camera, white));
 }
 
 TEST_F(RendererTest, NonFiniteInputNeverGivesANanPixel) {
