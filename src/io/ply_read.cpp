@@ -208,8 +208,9 @@ uint64_t skip_binary_element(std::istream& in, const Element& element, uint64_t 
     return static_cast<uint64_t>(in.tellg());
 }
 
-void read_binary_vertices(std::istream& in, const Element& vertex, const VertexPlan& plan, uint64_t offset,
-                          uint64_t file_size, bool swap, const std::string& where, GaussianCloud& cloud) {
+// Reads the vertices at `offset`; returns the offset just past them.
+uint64_t read_binary_vertices(std::istream& in, const Element& vertex, const VertexPlan& plan, uint64_t offset,
+                              uint64_t file_size, bool swap, const std::string& where, GaussianCloud& cloud) {
     const std::string at = where + ": element '" + vertex.name + "'";
     const uint64_t available = file_size - offset;
     if (vertex.count > file_size)
@@ -250,6 +251,7 @@ void read_binary_vertices(std::istream& in, const Element& vertex, const VertexP
         for (const auto& column : columns)
             column.out[i * column.per_gaussian] = load_as<float>(row + column.offset, column.type, swap);
     }
+    return offset + bytes;
 }
 
 // Lines of an ASCII body, skipping blank ones, numbered as in the whole file.
@@ -325,6 +327,19 @@ void read_ascii_vertices(LineCursor& lines, const Element& vertex, const VertexP
     }
 }
 
+// Data after every element the header declares means the header's counts are wrong (a count
+// written too small would otherwise read part of the scene with no word): refused, saying how much
+// follows and, where the vertices come last, how many more vertices that is.
+InputError trailing_data(const std::string& where, const std::string& amount, const Element& vertex,
+                         bool vertex_is_last, const std::string& in_vertices) {
+    std::string problem = amount + " follow the end of the body the header declares (" + std::to_string(vertex.count) +
+                          " vertices";
+    problem += vertex_is_last ? ")" : " and the elements after them)";
+    if (vertex_is_last && !in_vertices.empty()) problem += ": " + in_vertices;
+    return InputError(where, problem + "; the header's counts disagree with the file (written too small, or the file "
+                                       "is damaged)");
+}
+
 std::string joined(const std::vector<std::string>& words) {
     std::string text;
     for (const auto& word : words) text += (text.empty() ? "" : ", ") + word;
@@ -364,13 +379,36 @@ GaussianCloud read_ply(const fs::path& path, std::vector<std::string>* notes) {
                                          std::to_string(header.elements[e].count));
         }
         read_ascii_vertices(lines, vertex, plan, body.size(), where, cloud);
+        for (size_t e = vertex_index + 1; e < header.elements.size(); ++e)
+            for (uint64_t item = 0; item < header.elements[e].count; ++item)
+                if (!lines.next(line))
+                    throw InputError(where + ": element '" + header.elements[e].name + "'",
+                                     "truncated: the file ends at item " + std::to_string(item) + " of " +
+                                         std::to_string(header.elements[e].count));
+        if (lines.next(line)) {
+            const size_t first = lines.number();
+            size_t extra = 1;
+            while (lines.next(line)) ++extra;
+            throw trailing_data(where, std::to_string(extra) + " more lines (from line " + std::to_string(first) + ")",
+                                vertex, vertex_index + 1 == header.elements.size(), "");
+        }
     } else {
         const bool file_little_endian = header.format == ply::Format::binary_little_endian;
         const bool swap = file_little_endian != detail::kHostIsLittleEndian;
         uint64_t offset = header.body_offset;
         for (size_t e = 0; e < vertex_index; ++e)
             offset = skip_binary_element(in, header.elements[e], offset, file_size, swap, where);
-        read_binary_vertices(in, vertex, plan, offset, file_size, swap, where, cloud);
+        offset = read_binary_vertices(in, vertex, plan, offset, file_size, swap, where, cloud);
+        for (size_t e = vertex_index + 1; e < header.elements.size(); ++e)
+            offset = skip_binary_element(in, header.elements[e], offset, file_size, swap, where);
+        if (offset < file_size) {
+            const uint64_t extra = file_size - offset, stride = vertex.fixed_stride();
+            throw trailing_data(where, std::to_string(extra) + " bytes", vertex,
+                                vertex_index + 1 == header.elements.size(),
+                                "room for " + std::to_string(extra / stride) + " more vertices of " +
+                                    std::to_string(stride) + " bytes" +
+                                    (extra % stride ? " and " + std::to_string(extra % stride) + " bytes more" : ""));
+        }
     }
 
     if (notes) {

@@ -92,6 +92,27 @@ TEST(PlyErrors, TruncatedAsciiBody) {
     expect_input_error([&] { read_ply(dir / "cut.ply"); }, {"cut.ply", "truncated", "4 vertices expected", "84 bytes"});
 }
 
+// A header that declares fewer vertices than the body holds: reading only those would lose the
+// rest with no word.
+TEST(PlyErrors, MoreVerticesThanTheHeaderDeclares) {
+    ScratchDir dir;
+    for (const auto format : {PlyFormat::little_endian, PlyFormat::ascii}) {
+        std::string file = standard_ply(format, 5);
+        const std::string declared = "element vertex 5\n";
+        file.replace(file.find(declared), declared.size(), "element vertex 2\n");
+        write_bytes(dir / "more.ply", file);
+        // 14 floats = 56 bytes a vertex; ASCII: one line each.
+        const std::string amount = format == PlyFormat::ascii ? "3 more lines (from line 22)" : "168 bytes";
+        expect_input_error([&] { read_ply(dir / "more.ply"); },
+                           {"more.ply", amount, "follow the end of the body the header declares (2 vertices)"});
+    }
+    std::string file = standard_ply(PlyFormat::little_endian, 5);
+    file.replace(file.find("element vertex 5\n"), 17, "element vertex 2\n");
+    write_bytes(dir / "more.ply", file + "xy");
+    expect_input_error([&] { read_ply(dir / "more.ply"); },
+                       {"more.ply", "170 bytes", "room for 3 more vertices of 56 bytes and 2 bytes more"});
+}
+
 TEST(PlyErrors, AbsurdVertexCount) {
     ScratchDir dir;
     for (const auto format : {PlyFormat::little_endian, PlyFormat::ascii}) {
