@@ -20,6 +20,9 @@ json read_json_file(const std::filesystem::path& path) {
         return json::parse(in);
     } catch (const json::parse_error& error) {
         throw InputError(path.string(), std::string("malformed JSON: ") + error.what());
+    } catch (const json::exception& error) {
+        // A number beyond a double's range (1e400) is nlohmann's out_of_range, not a parse_error.
+        throw InputError(path.string(), std::string("unreadable JSON: ") + error.what());
     }
 }
 

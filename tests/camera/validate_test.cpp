@@ -54,6 +54,18 @@ TEST(Validate, RejectsBadFocalLengths) {
     expect_rejected([](Camera& c) { c.fy = kInf; }, "focal length");
 }
 
+// Finite and positive, yet no picture: 1e300 is infinite once the GPU takes it as a float.
+TEST(Validate, RejectsFocalLengthsThatMakeNoPicture) {
+    expect_rejected([](Camera& c) { c.fx = 1e300; }, "focal length (1e+300, 510) makes no picture of a 640x480 image");
+    expect_rejected([](Camera& c) { c.fy = 480 * 1.01e7; }, "fx / width and fy / height must lie in [1e-3, 1e7]");
+    expect_rejected([](Camera& c) { c.fx = 640 * 0.99e-3; }, "makes no picture");
+    Camera widest = good_camera(), narrowest = good_camera();
+    widest.fx = 640 * 1e-3;
+    narrowest.fy = 480 * 1e7;
+    EXPECT_NO_THROW(widest.validate());
+    EXPECT_NO_THROW(narrowest.validate());
+}
+
 TEST(Validate, RejectsNonFiniteValues) {
     expect_rejected([](Camera& c) { c.cx = kInf; }, "principal point");
     expect_rejected([](Camera& c) { c.cy = kNaN; }, "principal point");

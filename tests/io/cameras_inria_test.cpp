@@ -106,6 +106,17 @@ TEST(InriaCameras, ErrorsNameTheFileAndTheCamera) {
                           "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "fx": 0, "fy": 5}])");
     expect_input_error([&] { read_inria_cameras(path); }, {"cams.json", "camera 0 ('e')", "focal length"});
 
+    // Beyond a double: nlohmann's out_of_range, which once escaped without the file's name.
+    write_bytes(path, R"([{"img_name": "e", "width": 8, "height": 8, "position": [0, 0, 0],
+                          "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "fx": 1e400, "fy": 5}])");
+    expect_input_error([&] { read_inria_cameras(path); }, {"cams.json", "number overflow parsing '1e400'"});
+    expect_input_error([&] { read_cameras(path); }, {"cams.json", "number overflow parsing '1e400'"});
+
+    // Finite, but the picture would be blank.
+    write_bytes(path, R"([{"img_name": "e", "width": 8, "height": 8, "position": [0, 0, 0],
+                          "rotation": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], "fx": 1e300, "fy": 5}])");
+    expect_input_error([&] { read_inria_cameras(path); }, {"cams.json", "camera 0 ('e')", "makes no picture"});
+
     write_bytes(path, R"([{"img_name": "f", "width": 8, "height": 8, "position": [0, 0, 0],
                           "rotation": [[2, 0, 0], [0, 1, 0], [0, 0, 1]], "fx": 5, "fy": 5}])");
     expect_input_error([&] { read_inria_cameras(path); }, {"cams.json", "camera 0 ('f')", "orthonormal"});

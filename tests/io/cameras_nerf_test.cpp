@@ -99,6 +99,13 @@ TEST(NerfTransforms, Errors) {
       "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}]})");
     expect_input_error([&] { read_nerf_transforms(path); }, {"t.json", "frame 0 ('a')", "focal length"});
 
+    write_bytes(path, R"({"camera_angle_x": 1e-300, "frames": [{"file_path": "a", "w": 4, "h": 4,
+      "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 0], [0, 0, 0, 1]]}]})");
+    expect_input_error([&] { read_nerf_transforms(path); }, {"t.json", "frame 0 ('a')", "makes no picture"});
+
+    write_bytes(path, R"({"camera_angle_x": -1e400, "frames": []})");
+    expect_input_error([&] { read_nerf_transforms(path); }, {"t.json", "number overflow"});
+
     write_bytes(path, R"({"camera_angle_x": 0.5})");
     expect_input_error([&] { read_cameras(path); }, {"t.json", "neither an INRIA cameras.json"});
 }
