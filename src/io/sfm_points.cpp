@@ -1,6 +1,7 @@
 // SfM points from a COLMAP model folder, in any of the three files that hold them.
 #include "vksplat/io/sfm_points.hpp"
 
+#include <cmath>
 #include <fstream>
 #include <sstream>
 
@@ -24,6 +25,29 @@ double load_scalar(const char* bytes, ply::ScalarType type) {
         case ply::ScalarType::float64: return detail::load_little_endian<double>(bytes);
     }
     return 0;
+}
+
+// Keeps the points whose coordinates and colours are all finite; says how many went.
+void drop_non_finite(SfmPoints& points, const std::filesystem::path& file, std::vector<std::string>* warnings) {
+    const size_t n = points.size();
+    size_t kept = 0;
+    for (size_t i = 0; i < n; ++i) {
+        bool finite = true;
+        for (int k = 0; k < 3; ++k)
+            finite = finite && std::isfinite(points.positions[3 * i + k]) && std::isfinite(points.colors[3 * i + k]);
+        if (!finite) continue;
+        for (int k = 0; k < 3; ++k) {
+            points.positions[3 * kept + k] = points.positions[3 * i + k];
+            points.colors[3 * kept + k] = points.colors[3 * i + k];
+        }
+        ++kept;
+    }
+    if (kept == n) return;
+    points.positions.resize(3 * kept);
+    points.colors.resize(3 * kept);
+    if (warnings)
+        warnings->push_back(file.string() + ": dropped " + std::to_string(n - kept) + " of " + std::to_string(n) +
+                            " points with a non-finite coordinate or colour");
 }
 
 }  // namespace
@@ -91,16 +115,18 @@ SfmPoints read_points_ply(const std::filesystem::path& path) {
     return points;
 }
 
-SfmPoints read_sfm_points(const std::filesystem::path& model_dir) {
+SfmPoints read_sfm_points(const std::filesystem::path& model_dir, std::vector<std::string>* warnings) {
     SfmPoints points;
-    if (std::filesystem::exists(model_dir / "points3D.bin"))
-        detail::read_colmap_points_binary(model_dir / "points3D.bin", points.positions, points.colors);
-    else if (std::filesystem::exists(model_dir / "points3D.txt"))
-        detail::read_colmap_points_text(model_dir / "points3D.txt", points.positions, points.colors);
-    else if (std::filesystem::exists(model_dir / "points3D.ply"))
-        return read_points_ply(model_dir / "points3D.ply");
+    std::filesystem::path file;
+    if (std::filesystem::exists(file = model_dir / "points3D.bin"))
+        detail::read_colmap_points_binary(file, points.positions, points.colors);
+    else if (std::filesystem::exists(file = model_dir / "points3D.txt"))
+        detail::read_colmap_points_text(file, points.positions, points.colors);
+    else if (std::filesystem::exists(file = model_dir / "points3D.ply"))
+        points = read_points_ply(file);
     else
         throw InputError(model_dir.string(), "holds no points3D.bin, points3D.txt or points3D.ply");
+    drop_non_finite(points, file, warnings);
     return points;
 }
 

@@ -101,7 +101,7 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
         const fs::path model = fs::exists(data_dir / "sparse" / "0") ? data_dir / "sparse" / "0" : data_dir / "sparse";
         data.cameras = io::read_colmap_cameras(model, &data.warnings);
         refuse_distortion(data.warnings, model);
-        points = io::read_sfm_points(model);
+        points = io::read_sfm_points(model, &data.warnings);
         data.images_dir = data_dir / "images";
         // The reference's llffhold: every test_every-th camera by image name (read sorted) is held out.
         for (size_t i = 0; i < data.cameras.size(); ++i)

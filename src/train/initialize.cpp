@@ -21,6 +21,9 @@ constexpr float kInitialOpacity = 0.1f;
 GaussianCloud initial_cloud(const io::SfmPoints& points, int sh_degree) {
     const size_t n = points.size();
     if (n == 0) throw InputError("points", "none to start training from");
+    for (size_t i = 0; i < 3 * n; ++i)
+        if (!std::isfinite(points.positions[i]))
+            throw InputError("point " + std::to_string(i / 3), "has a non-finite coordinate; drop it before training");
     GaussianCloud cloud;
     cloud.sh_degree = sh_degree;
     cloud.resize(n);

@@ -10,7 +10,8 @@
 
 namespace vksplat::train {
 
-// Throws InputError for no points.
+// Throws InputError for no points, or for a point with a non-finite coordinate: in the neighbour
+// search it would throw off the scales of the others (io::read_sfm_points drops such points).
 GaussianCloud initial_cloud(const io::SfmPoints& points, int sh_degree);
 
 // `count` points uniform in the box [low, high]^3 with near-grey random colours: what the reference
