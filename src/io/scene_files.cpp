@@ -24,8 +24,9 @@ std::string format_list() {
     return list;
 }
 
-// The format named by `format`, or by the extension when it is empty; "ply" stays "ply" here.
-std::string chosen_format(const fs::path& path, const std::string& format) {
+}  // namespace
+
+std::string scene_format_named(const fs::path& path, const std::string& format) {
     if (format.empty()) {
         const std::string extension = lowercase(path.extension().string());
         if (extension == ".ply") return "ply";
@@ -44,18 +45,16 @@ std::string chosen_format(const fs::path& path, const std::string& format) {
     return name;
 }
 
-}  // namespace
-
 std::vector<std::string> scene_formats() { return {"ply", "compressed-ply", "splat", "spz", "gsplat-pt"}; }
 
 std::string scene_format_of(const fs::path& path) {
-    const std::string format = chosen_format(path, "");
+    const std::string format = scene_format_named(path);
     if (format == "ply" && fs::exists(path) && is_compressed_ply(path)) return "compressed-ply";
     return format;
 }
 
 GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, std::string format) {
-    std::string name = chosen_format(path, format);
+    std::string name = scene_format_named(path, format);
     if (name == "ply" && fs::exists(path) && is_compressed_ply(path)) name = "compressed-ply";
     if (name == "ply") return read_ply(path, notes);
     if (name == "compressed-ply") return read_compressed_ply(path, notes);
@@ -65,7 +64,7 @@ GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, 
 }
 
 std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
-    const std::string name = chosen_format(path, format);
+    const std::string name = scene_format_named(path, format);
     if (name != "ply" && name != "splat" && name != "spz")
         throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here (writable: ply, splat, spz)");
     check_writable(path, mode);

@@ -1,8 +1,5 @@
 #include "vksplat/jobs/convert_scene.hpp"
 
-#include <algorithm>
-#include <cctype>
-
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 
@@ -10,25 +7,6 @@ namespace vksplat::jobs {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string lowercase(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
-    return text;
-}
-
-// The format a file will be read or written as; io::scene_format_of throws, naming the file and
-// the supported extensions, for an extension it does not know.
-std::string resolve_format(const fs::path& path, const std::string& named) {
-    if (named.empty()) return io::scene_format_of(path);
-    const std::string name = lowercase(named);
-    const auto names = io::scene_formats();
-    if (std::find(names.begin(), names.end(), name) == names.end()) {
-        std::string list;
-        for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
-        throw InputError(path.string(), "unknown scene format '" + named + "'; supported: " + list);
-    }
-    return name;
-}
 
 // The SH degree a format keeps, so the user is told what was dropped rather than surprised.
 int kept_sh_degree(const std::string& format, int sh_degree) { return format == "splat" ? 0 : sh_degree; }
@@ -38,12 +16,13 @@ int kept_sh_degree(const std::string& format, int sh_degree) { return format == 
 ConvertResult convert_scene(const fs::path& input, const fs::path& output, const ConvertOptions& options) {
     ConvertResult result;
     if (!fs::exists(input)) throw InputError(input.string(), "no such file");
-    result.input_format = resolve_format(input, options.input_format);
-    result.output_format = resolve_format(output, options.output_format);
-    if (options.mode == io::WriteMode::refuse_existing && fs::exists(output))
-        throw InputError(output.string(), "already exists; not overwritten (use --force to replace it)");
-    if (fs::exists(output) && fs::equivalent(input, output))
-        throw InputError(output.string(), "is the input file; write the conversion to another file");
+    // The input's header may tell a compressed .ply apart; the output's format comes from its name
+    // (or options) alone: an existing file there is about to be replaced, whatever it holds.
+    result.input_format = options.input_format.empty() ? io::scene_format_of(input)
+                                                       : io::scene_format_named(input, options.input_format);
+    result.output_format = io::scene_format_named(output, options.output_format);
+    io::refuse_input_as_output(output, {input});
+    io::check_writable(output, options.mode);
 
     const GaussianCloud cloud = io::read_scene(input, &result.notes, result.input_format);
     result.gaussians = cloud.size();

@@ -85,6 +85,29 @@ TEST(ConvertScene, ExistingOutputIsKeptWithoutOverwrite) {
     EXPECT_EQ(io::read_scene(dir / "taken.spz").size(), 40u);
 }
 
+// The output's name decides its format: an existing out.ply that is really another format (read
+// as such by its header, or not a PLY at all) is replaced by a plain PLY, not taken as a model.
+TEST(ConvertScene, AnExistingOutputHasNoSayInItsFormat) {
+    ScratchDir dir;
+    const GaussianCloud scene = small_scene();
+    io::write_scene(scene, dir / "scene.ply");
+    io::write_scene(scene, dir / "real.spz");
+    io::write_scene(scene, dir / "real.splat");
+    // A compressed PLY's header (chunks, packed vertices): read as compressed-ply, a read-only format.
+    io::test::write_bytes(dir / "real.compressed.ply",
+                          "ply\nformat binary_little_endian 1.0\nelement chunk 1\nproperty float min_x\n"
+                          "element vertex 1\nproperty uint packed_position\nend_header\n");
+    ASSERT_EQ(io::scene_format_of(dir / "real.compressed.ply"), "compressed-ply");
+    for (const char* impostor : {"real.spz", "real.splat", "real.compressed.ply"}) {
+        SCOPED_TRACE(impostor);
+        std::filesystem::copy_file(dir / impostor, dir / "out.ply", std::filesystem::copy_options::overwrite_existing);
+        const ConvertResult result = convert_scene(dir / "scene.ply", dir / "out.ply", {"", "", io::WriteMode::overwrite});
+        EXPECT_EQ(result.output_format, "ply");
+        EXPECT_EQ(io::scene_format_of(dir / "out.ply"), "ply");
+        io::test::expect_same_cloud(io::read_scene(dir / "out.ply"), scene);
+    }
+}
+
 TEST(ConvertScene, MistakesAreRefusedBeforeWriting) {
     ScratchDir dir;
     io::write_scene(small_scene(), dir / "scene.ply");
@@ -94,7 +117,7 @@ TEST(ConvertScene, MistakesAreRefusedBeforeWriting) {
                        {"x.ply", "unknown scene format 'ksplat'"});
     expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "x.pt"); }, {"x.pt", "cannot write format 'gsplat-pt'"});
     expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "scene.ply", {"", "", io::WriteMode::overwrite}); },
-                       {"scene.ply", "is the input file"});
+                       {"scene.ply", "is an input of this command"});
     for (const char* name : {"x.spz", "x.obj", "x.ply", "x.pt"}) EXPECT_FALSE(std::filesystem::exists(dir / name)) << name;
 }
 

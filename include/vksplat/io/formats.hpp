@@ -68,6 +68,11 @@ std::vector<std::string> scene_formats();
 // "ply" and "compressed-ply" when the file exists. Throws InputError, listing the supported
 // extensions, for any other extension.
 std::string scene_format_of(const std::filesystem::path& path);
+// The format `format` names (case-insensitive), or when it is empty the one `path`'s extension
+// names ("ply" for any .ply). It never opens the file: what a writer goes by, since a file about
+// to be replaced has no say in what replaces it. Throws InputError like scene_format_of, or for
+// an unknown format name.
+std::string scene_format_named(const std::filesystem::path& path, const std::string& format = "");
 
 // Reads a scene in the format named by `format`, or by the extension when `format` is empty.
 // "ply" reads either PLY flavour (the header decides). Notes (ignored properties, skipped data, what

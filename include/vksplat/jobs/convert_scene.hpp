@@ -12,7 +12,7 @@ namespace vksplat::jobs {
 
 struct ConvertOptions {
     std::string input_format;   // empty: by the input's extension (and header, for .ply)
-    std::string output_format;  // empty: by the output's extension
+    std::string output_format;  // empty: by the output's extension, never by what a file there holds
     io::WriteMode mode = io::WriteMode::refuse_existing;
 };
 
@@ -25,8 +25,9 @@ struct ConvertResult {
 };
 
 // Reads `input` and writes it to `output`. Both formats are resolved, and an existing output is
-// refused (unless options.mode is overwrite), before the input is read, so a mistake costs no
-// time on a large scene. Throws InputError naming the file at fault.
+// refused (unless options.mode is overwrite), as is an output that is the input (always), before
+// the input is read, so a mistake costs no time on a large scene. Throws InputError naming the
+// file at fault.
 ConvertResult convert_scene(const std::filesystem::path& input, const std::filesystem::path& output,
                             const ConvertOptions& options = {});
 
