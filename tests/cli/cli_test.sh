@@ -92,6 +92,11 @@ expect convert-splat-back 0 "from $work/demo.splat (splat)" -- "$vksplat" conver
 expect info-reads-spz 0 "Gaussians: 38605" -- "$vksplat" info "$work/demo.spz"
 expect convert-refuses-overwrite 2 "demo.spz: already exists" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.spz"
 expect convert-force 0 "wrote 38605" -- "$vksplat" convert "$work/from_splat.ply" "$work/demo.spz" --force
+# The output's name says its format: an existing .ply that holds SPZ is replaced by a plain PLY.
+cp "$work/demo.spz" "$work/impostor.ply"
+expect convert-output-format-by-name 0 "to $work/impostor.ply (ply)" -- "$vksplat" convert "$work/demo/demo.ply" \
+  "$work/impostor.ply" --force
+expect convert-output-is-a-plain-ply 0 "Gaussians: 38605" -- "$vksplat" info "$work/impostor.ply"
 expect convert-read-only-format 2 "cannot write format 'gsplat-pt'" -- "$vksplat" convert "$work/demo.spz" "$work/x.pt"
 expect convert-unknown-extension 2 "unknown scene file extension '.obj'" -- "$vksplat" convert "$work/demo.spz" "$work/x.obj"
 # Sweep: a quick one against the photo, then the refusal to overwrite its results.
@@ -177,6 +182,50 @@ expect missing-camera-file any-failure "does not exist" -- "$vksplat" render "$w
 sed 's/"fx": 70/"fx": 0/' "$work/cameras.json" >"$work/zero_focal.json"
 expect zero-focal 2 "zero_focal.json" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
 expect zero-focal-says-so 2 "camera 0 ('top'): focal length (0.000000, 70.000000) must be positive" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/zero_focal.json" --out "$work/y"
+sed 's/"fx": 70/"fx": 1e300/' "$work/cameras.json" >"$work/blank_focal.json"
+expect focal-makes-no-picture 2 "blank_focal.json: camera 0 ('top'): focal length (1e+300, 70) makes no picture" -- \
+  "$vksplat" render "$work/demo/demo.ply" --cameras "$work/blank_focal.json" --out "$work/y"
+sed 's/"fx": 70/"fx": 1e400/' "$work/cameras.json" >"$work/overflow.json"
+expect json-number-overflow 2 "overflow.json: unreadable JSON" -- "$vksplat" render "$work/demo/demo.ply" \
+  --cameras "$work/overflow.json" --out "$work/y"
+sed 's/^element vertex 38605/element vertex 20000/' "$work/demo/demo.ply" >"$work/count_too_small.ply" 2>/dev/null
+expect ply-count-too-small 2 "room for 18605 more vertices" -- "$vksplat" info "$work/count_too_small.ply"
+# Bad numbers are refused with the option's name, NaN and infinities included, and no message
+# prints DBL_MAX as a bound.
+scene_args=("$work/demo/demo.ply" --cameras "$work/cameras.json")
+expect background-nan any-failure "--background: 'nan' is not a finite number in [0, 1]" -- "$vksplat" render \
+  "${scene_args[@]}" --out "$work/bg" --background nan,0,0
+expect background-inf any-failure "--background: 'inf' is not" -- "$vksplat" bench "${scene_args[@]}" --background 0,inf,0
+expect background-above-one any-failure "--background: '2' is not" -- "$vksplat" prune "${scene_args[@]}" \
+  --method blend --background 2,-1,0 -o "$work/bg.ply"
+expect background-negative any-failure "--background: '-1' is not" -- "$vksplat" sweep "${scene_args[@]}" \
+  --images "$work/photos" --out "$work/bg" --background 0,-1,0
+expect keep-negative any-failure "--keep: '-3' is not a whole number >= 0" -- "$vksplat" prune "${scene_args[@]}" \
+  --method blend --keep -3 -o "$work/bg.ply"
+expect ratio-nan any-failure "--ratio: 'nan' is not a finite number in [0, 1]" -- "$vksplat" prune "${scene_args[@]}" \
+  --method blend --ratio nan -o "$work/bg.ply"
+expect memory-budget-nan any-failure "--memory-budget: 'nan' is not a finite number in [0.001, 1e+09]" -- \
+  "$vksplat" render "${scene_args[@]}" --out "$work/bg" --memory-budget nan
+expect memory-budget-tiny any-failure "--memory-budget: '1e-9' is not" -- "$vksplat" finetune "${scene_args[@]}" \
+  --images "$work/photos" -o "$work/bg.ply" --memory-budget 1e-9
+expect psnr-drop-negative any-failure "--max-psnr-drop: '-1' is not a finite number >= 0" -- "$vksplat" prune \
+  "${scene_args[@]}" --method blend --max-psnr-drop -1 -o "$work/bg.ply"
+"$vksplat" prune "${scene_args[@]}" --method blend --max-psnr-drop -1 -o "$work/bg.ply" 2>&1 | grep -q 17976931 &&
+  { failed=$((failed + 1)); echo "FAILED: a message prints DBL_MAX"; } || passed=$((passed + 1))
+expect iters-nan any-failure "--iters: 'nan' is not a whole number >= 1" -- "$vksplat" train "$work/photos" \
+  -o "$work/bg" --iters nan
+expect test-every-negative any-failure "--test-every: '-1' is not a whole number >= 0" -- "$vksplat" train \
+  "$work/photos" -o "$work/bg" --test-every -1
+expect grad-threshold-nan any-failure "--densify-grad-threshold: 'nan' is not a finite number > 0" -- "$vksplat" \
+  train "$work/photos" -o "$work/bg" --densify-grad-threshold nan
+expect fractions-nan any-failure "--fractions: 'nan' is not" -- "$vksplat" sweep "${scene_args[@]}" \
+  --images "$work/photos" --out "$work/bg" --fractions 0.5,nan
+expect delta-dist-nan 2 "--delta-dist nan: expected a distance or auto" -- "$vksplat" cluster build \
+  "${scene_args[@]}" --work "$work/cw" --delta-dist nan --force
+expect cluster-weight-inf any-failure "--kappa: 'inf' is not a finite number" -- "$vksplat" cluster score \
+  "${scene_args[@]}" --work "$work/cw" --kappa inf
+expect width-negative any-failure "--width: '-5' is not a whole number in [1, 16384]" -- "$vksplat" bench \
+  "${scene_args[@]}" --width -5 --height 5
 # Finetune: a short re-fit to photos of the demo (the three views above, rendered), the refusals,
 # and Ctrl-C: the run stops with its checkpoint and no output, and --resume finishes it.
 expect photos-of-three 0 "wrote 3 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/three.json" \

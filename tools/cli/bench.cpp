@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/npy.hpp"
@@ -150,13 +151,19 @@ void register_bench(CLI::App& app, Action& action) {
     cmd->add_option("--cameras", args->cameras, "camera file (cameras.json, COLMAP, transforms.json)")
         ->check(CLI::ExistingPath);
     cmd->add_option("--views", args->views, "views to time, e.g. 0,3,5-7 (default: all)");
-    cmd->add_option("--width", args->width, "render at this width (focal lengths scale with it)");
-    cmd->add_option("--height", args->height, "render at this height");
+    cmd->add_option("--width", args->width, "render at this width (focal lengths scale with it)")
+        ->check(count_in(1, 16384));
+    cmd->add_option("--height", args->height, "render at this height")->check(count_in(1, 16384));
     cmd->add_option("--tiled", args->tiled, "NxN copies of the scene seen by the tiled benchmark camera (e.g. 5x5)");
-    cmd->add_option("--reps", args->reps, "timed frames per view")->capture_default_str();
-    cmd->add_option("--warmup", args->warmup, "untimed frames first (and at least a second of them)")->capture_default_str();
-    cmd->add_option("--background", args->background, "R,G,B in [0, 1]")->delimiter(',')->expected(3);
-    cmd->add_option("--sh-degree", args->sh_degree, "highest SH degree evaluated")->check(CLI::Range(0, 3));
+    cmd->add_option("--reps", args->reps, "timed frames per view")->capture_default_str()->check(count_in(1, 1000000));
+    cmd->add_option("--warmup", args->warmup, "untimed frames first (and at least a second of them)")
+        ->capture_default_str()
+        ->check(count_in(0, 1000000));
+    cmd->add_option("--background", args->background, "R,G,B in [0, 1]")
+        ->delimiter(',')
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
+    cmd->add_option("--sh-degree", args->sh_degree, "highest SH degree evaluated")->check(count_in(0, 3));
     cmd->add_flag("--half-sh", args->half_sh, "keep SH in half precision on the device (half the SH memory)");
     cmd->add_flag("--stats", args->stats,
                   "gather the per-Gaussian blend statistics that pruning scores read (the cost of scoring a view)");

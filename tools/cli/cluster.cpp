@@ -8,6 +8,7 @@
 
 #include "cluster_options.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
@@ -40,15 +41,19 @@ void add_common(CLI::App& c, ClusterArgs& a) {
         ->required()
         ->check(CLI::ExistingPath);
     c.add_option("--work", a.work, "folder for the stages' outputs")->required();
-    c.add_option("--background", a.background, "background colour R,G,B in [0,1]")->delimiter(',')->expected(3);
+    c.add_option("--background", a.background, "background colour R,G,B in [0,1]")
+        ->delimiter(',')
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
     c.add_flag("--force", a.force, "overwrite existing outputs");
 }
 
 void add_prune(CLI::App& c, ClusterArgs& a) {
-    auto* threshold = c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this");
+    auto* threshold =
+        c.add_option("--score-threshold", a.score_threshold, "drop clusters whose G* is below this")->check(number_in());
     auto& rule = a.stage.options.selection;
     auto* ratio = c.add_option("--prune-ratio", rule.ratio, "else drop this fraction (see --ratio-of), lowest G* first")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str()
         ->excludes(threshold);
     c.add_option("--ratio-of", a.ratio_of, "what --prune-ratio counts: gaussians, or clusters (the original rule)")
@@ -56,12 +61,12 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
         ->capture_default_str();
     auto* contribution = c.add_option("--max-contribution-loss", rule.max_contribution_loss,
                                       "stop before the dropped clusters paint more than this share of the picture (1: no limit)")
-                             ->check(CLI::Range(0.0, 1.0))
+                             ->check(number_in(0.0, 1.0))
                              ->capture_default_str();
     c.add_option("--max-psnr-drop", a.max_psnr_drop,
                  "instead: the fewest Gaussians, clusters whole from the best G* down, whose mean PSNR on the test "
                  "views drops at most D dB (against --images, else the unpruned render)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(number_in(0.0))
         ->excludes(threshold)
         ->excludes(ratio)
         ->excludes(contribution);
@@ -83,7 +88,7 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
     auto* recover = c.add_option("--recover", a.recover,
                                  "then re-fit what is kept for N iterations on the training views' photos (--images), "
                                  "in one round")
-                        ->check(CLI::PositiveNumber);
+                        ->check(count_in(1));
     recover->excludes(c.get_option("--max-psnr-drop"));
     c.add_option("--recover-loss", a.recover_loss,
                  "with --recover: what the loss looks at, the subject region of each view (background pixels "

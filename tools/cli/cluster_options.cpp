@@ -1,6 +1,7 @@
 // The options of cluster pruning's stages 1-6 (see cluster_options.hpp).
 #include "cluster_options.hpp"
 
+#include "number_checks.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
@@ -9,52 +10,73 @@ namespace {
 
 void add_regions(CLI::App& c, ClusterStageArgs& a) {
     auto& o = a.options;
-    c.add_option("--max-views", o.max_views, "render at most this many training views, evenly spread");
+    c.add_option("--max-views", o.max_views, "render at most this many training views, evenly spread")
+        ->check(count_in(1));
     c.add_option("--render-views", a.render_views, "views to render, e.g. 13-99 (default: the training views)");
-    c.add_option("--resolution-scale", o.resolution_scale, "render and segment at this fraction of the camera size");
-    c.add_option("--seg-sigma", o.segmentation.sigma, "graph segmentation: pre-smoothing in pixels");
-    c.add_option("--seg-k", o.segmentation.k, "graph segmentation: scale (larger: larger regions)");
-    c.add_option("--seg-min-size", o.segmentation.min_size_fraction, "smallest region, as a fraction of the image");
-    c.add_option("--min-alpha", o.segmentation.min_alpha, "pixels with rendered alpha below this carry no region");
+    c.add_option("--resolution-scale", o.resolution_scale, "render and segment at this fraction of the camera size")
+        ->check(positive_number(4.0));
+    c.add_option("--seg-sigma", o.segmentation.sigma, "graph segmentation: pre-smoothing in pixels")
+        ->check(number_in(0.0));
+    c.add_option("--seg-k", o.segmentation.k, "graph segmentation: scale (larger: larger regions)")
+        ->check(positive_number());
+    c.add_option("--seg-min-size", o.segmentation.min_size_fraction, "smallest region, as a fraction of the image")
+        ->check(number_in(0.0, 1.0));
+    c.add_option("--min-alpha", o.segmentation.min_alpha, "pixels with rendered alpha below this carry no region")
+        ->check(number_in(0.0, 1.0));
 }
 
 void add_project(CLI::App& c, ClusterStageArgs& a) {
     auto& o = a.options;
     c.add_option("--views", a.keep_views, "use exactly these views instead of the view filter's choice");
-    c.add_option("--max-largest-fraction", o.filter.max_largest_fraction, "filter: largest region's share at most");
-    c.add_option("--max-regions", o.filter.max_regions, "filter: regions per view at most");
-    c.add_option("--min-edge-alignment", o.filter.min_edge_alignment, "filter: border/image gradient ratio at least");
-    c.add_option("--min-labelled-fraction", o.filter.min_labelled_fraction, "filter: share of pixels in a region");
+    c.add_option("--max-largest-fraction", o.filter.max_largest_fraction, "filter: largest region's share at most")
+        ->check(number_in(0.0, 1.0));
+    c.add_option("--max-regions", o.filter.max_regions, "filter: regions per view at most")->check(count_in(1));
+    c.add_option("--min-edge-alignment", o.filter.min_edge_alignment, "filter: border/image gradient ratio at least")
+        ->check(number_in(0.0));
+    c.add_option("--min-labelled-fraction", o.filter.min_labelled_fraction, "filter: share of pixels in a region")
+        ->check(number_in(0.0, 1.0));
     c.add_option("--occlusion", a.occlusion, "occlusion rule: depth (nearest centre) or blend (alpha*T at centre)")
         ->check(CLI::IsMember({"depth", "blend"}));
-    c.add_option("--min-weight", o.projection.min_weight, "blend rule: smallest alpha*T at the centre that counts");
+    c.add_option("--min-weight", o.projection.min_weight, "blend rule: smallest alpha*T at the centre that counts")
+        ->check(number_in(0.0, 1.0));
 }
 
 void add_build(CLI::App& c, ClusterStageArgs& a) {
     auto& o = a.options;
     c.add_option("--delta-dist", a.delta, "neighbour radius in scene units, or auto");
-    c.add_option("--max-neighbours", o.max_neighbours, "nearest neighbours per Gaussian within the radius");
-    c.add_option("--semantic-tol", o.merge.semantic_tol, "largest share of common views whose regions may differ");
-    c.add_option("--min-common-views", o.merge.min_common_views, "views that must see both of a pair");
+    c.add_option("--max-neighbours", o.max_neighbours, "nearest neighbours per Gaussian within the radius")
+        ->check(count_in(1));
+    c.add_option("--semantic-tol", o.merge.semantic_tol, "largest share of common views whose regions may differ")
+        ->check(number_in(0.0, 1.0));
+    c.add_option("--min-common-views", o.merge.min_common_views, "views that must see both of a pair")
+        ->check(count_in(1));
 }
 
 void add_score(CLI::App& c, ClusterStageArgs& a) {
     auto& w = a.options.weights;
-    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G* (the issue's: 0.1)")->capture_default_str();
-    c.add_option("--beta", w.beta, "weight of the depth variance in G* (the issue's: 0.1)")->capture_default_str();
+    c.add_option("--alpha", w.alpha, "weight of the spatial variance in G* (the issue's: 0.1)")
+        ->capture_default_str()
+        ->check(number_in());
+    c.add_option("--beta", w.beta, "weight of the depth variance in G* (the issue's: 0.1)")
+        ->capture_default_str()
+        ->check(number_in());
     c.add_option("--gamma", w.gamma, "weight of the multi-view visibility ratio in G* (the issue's: 1)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(number_in());
     c.add_option("--mvr-mean-frac-weight", w.mvr_mean_frac_weight, "share of mean_visible_frac in MVR")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(number_in(0.0, 1.0));
     c.add_option("--kappa", w.kappa,
                  "weight of the contribution (largest share of the picture a member paints) in G* (the issue's: 0)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(number_in());
     c.add_option("--lambda", w.lambda,
                  "weight in G* of being central: how much the views look at the cluster reaches --central-threshold")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(number_in());
     c.add_option("--central-threshold", w.central_threshold,
                  "centrality (mean over views of 1 - rho^2 at the projected centre) from which a cluster is central")
-        ->check(CLI::Range(0.0, 1.0))
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
 }
 
@@ -76,11 +98,9 @@ void resolve_cluster_stage_args(ClusterStageArgs& args, size_t camera_count) {
         options.delta.reset();
         return;
     }
-    try {
-        options.delta = std::stod(args.delta);
-    } catch (const std::exception&) {
-        throw InputError("--delta-dist " + args.delta, "expected a distance or auto");
-    }
+    options.delta = finite_number(args.delta);
+    if (!options.delta) throw InputError("--delta-dist " + args.delta, "expected a distance or auto");
+    if (*options.delta <= 0) throw InputError("--delta-dist " + args.delta, "a distance must be above 0");
 }
 
 }  // namespace vksplat::cli

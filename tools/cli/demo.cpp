@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/demo_scene.hpp"
 #include "vksplat/io/ply.hpp"
@@ -56,9 +57,9 @@ void register_demo(CLI::App& app, Action& action) {
     command->footer("Example:\n  vksplat demo --out demo_out --views 24 --width 800 --height 600");
     auto args = std::make_shared<DemoArgs>();
     command->add_option("--out", args->out, "output folder")->required();
-    command->add_option("--views", args->views, "cameras on the orbit")->check(CLI::Range(1, 3600));
-    command->add_option("--width", args->width, "image width")->check(CLI::Range(1, 16384));
-    command->add_option("--height", args->height, "image height")->check(CLI::Range(1, 16384));
+    command->add_option("--views", args->views, "cameras on the orbit")->check(count_in(1, 3600));
+    command->add_option("--width", args->width, "image width")->check(count_in(1, 16384));
+    command->add_option("--height", args->height, "image height")->check(count_in(1, 16384));
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_demo(*args); }; });

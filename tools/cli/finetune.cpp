@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "interrupt.hpp"
+#include "number_checks.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -122,21 +123,22 @@ void register_finetune(CLI::App& app, Action& action) {
         ->check(CLI::ExistingPath);
     command->add_option("--images", args->images, "the photos, found by camera name")->required()->check(CLI::ExistingDirectory);
     command->add_option("--iters", args->iterations, "iterations in all (a resumed run counts the earlier ones)")
-        ->check(CLI::PositiveNumber);
+        ->check(count_in(1));
     command->add_option("--test-views", args->test_views,
                         "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to train on (default: all but the test views)");
     command->add_option("--background", args->background, "background colour R,G,B in [0,1] (also under photo alpha)")
         ->delimiter(',')
-        ->expected(3);
-    command->add_option("--seed", args->seed, "seed of the training views' order");
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
+    command->add_option("--seed", args->seed, "seed of the training views' order")->check(count_in(0));
     command->add_option("--position-lr", args->position_lr,
                         "final: the reference's final position rate throughout (default); decay: from its\n"
                         "initial to its final rate over the run, as a fresh training does")
         ->check(CLI::IsMember({"final", "decay"}));
     command->add_option("--checkpoint", args->checkpoint, "checkpoint file (default: OUT.checkpoint)");
     command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
-        ->check(CLI::PositiveNumber);
+        ->check(count_in(1));
     command->add_flag("--resume", args->resume, "continue from the checkpoint");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .splat or .spz)")->required();

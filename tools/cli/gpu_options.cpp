@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 
 namespace vksplat::cli {
 
@@ -13,7 +14,9 @@ void add_gpu_options(CLI::App& command, GpuOptions& options) {
     command.add_option("--memory-budget", options.memory_budget_mb,
                        "device memory to use, in MiB (default: the device's limit); frames that do not fit are "
                        "rendered in depth-ordered chunks, with the same picture")
-        ->check(CLI::PositiveNumber);
+        // Below a kilobyte the budget rounds to nothing (0 bytes, which means no budget), and no
+        // frame fits in it anyway; above 1e9 MiB it would overflow the byte count.
+        ->check(number_in(0.001, 1e9));
 }
 
 void ChunkReport::print(const gpu::Context& context) const {

@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/cameras.hpp"
@@ -158,13 +159,14 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--method", args->method, "importance score")
         ->required()
         ->check(CLI::IsMember(prune::score_method_names()));
-    auto* threshold = command->add_option("--threshold", args->threshold, "drop Gaussians whose score is <= T");
+    auto* threshold =
+        command->add_option("--threshold", args->threshold, "drop Gaussians whose score is <= T")->check(number_in());
     auto* ratio = command->add_option("--ratio", args->ratio, "drop this fraction of the Gaussians (0..1)")
-                      ->check(CLI::Range(0.0, 1.0));
-    auto* keep = command->add_option("--keep", args->keep, "keep this many Gaussians");
+                      ->check(number_in(0.0, 1.0));
+    auto* keep = command->add_option("--keep", args->keep, "keep this many Gaussians")->check(count_in(0));
     auto* budget = command->add_option("--max-psnr-drop", args->max_psnr_drop,
                                        "smallest model losing at most D dB of mean PSNR on the test views")
-                       ->check(CLI::NonNegativeNumber);
+                       ->check(number_in(0.0));
     threshold->excludes(ratio, keep, budget);
     ratio->excludes(keep, budget);
     keep->excludes(budget);
@@ -179,22 +181,23 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--train-views", args->train_views, "views to score on (default: all but the test views)");
     command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
         ->delimiter(',')
-        ->expected(3);
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
     command->add_option("--sh-degree", args->sh_degree, "write the scene with at most this SH degree")
-        ->check(CLI::Range(0, 3));
+        ->check(count_in(0, 3));
     command->add_option("--save-scores", args->save_scores, "write the scores as float32 [N] .npy");
     command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
-    command->add_option("--seed", args->seed, "seed of the random method");
+    command->add_option("--seed", args->seed, "seed of the random method")->check(count_in(0));
     auto* recover = command->add_option("--recover", args->recover,
                         "re-fit the kept Gaussians to the photos for N iterations (needs --images); with\n"
                         "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting")
-        ->check(CLI::PositiveNumber);
+        ->check(count_in(1));
     auto* rounds = command->add_option("--rounds", args->rounds,
                                        "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop),\n"
                                        "each dropping a geometrically growing share, ranked on the re-fitted model")
-                       ->check(CLI::Range(1, 100));
+                       ->check(count_in(1, 100));
     auto* position_lr = command->add_option("--position-lr", args->position_lr,
                                             "with --recover: decay (default) the position rate from its initial to\n"
                                             "its final value in each re-fit, or keep it at the final value")

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/jobs/render_views.hpp"
@@ -77,8 +78,9 @@ void register_render(CLI::App& app, Action& action) {
     command->add_option("--views", args->views, "views to render, e.g. 0,3,5-7 (default: all)");
     command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
         ->delimiter(',')
-        ->expected(3);
-    command->add_option("--sh-degree", args->sh_degree, "highest SH degree to evaluate")->check(CLI::Range(0, 3));
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
+    command->add_option("--sh-degree", args->sh_degree, "highest SH degree to evaluate")->check(count_in(0, 3));
     command->add_option("--bit-depth", args->bit_depth, "PNG bit depth")->check(CLI::IsMember({8, 16}));
     command->add_option("--images", args->images, "photos to compare with (writes metrics.csv)")
         ->check(CLI::ExistingDirectory);

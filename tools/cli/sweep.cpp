@@ -5,6 +5,7 @@
 
 #include "cluster_options.hpp"
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/jobs/sweep.hpp"
@@ -138,37 +139,42 @@ void register_sweep(CLI::App& app, Action& action) {
         ->check(CLI::IsMember(method_names));
     command->add_option("--fractions", args->fractions, "dropped fractions (default: 0,0.1,...,0.9,0.95,0.98)")
         ->delimiter(',')
-        ->check(CLI::Range(0.0, 1.0));
+        ->check(number_in(0.0, 1.0));
     command->add_option("--test-views", args->test_views,
                         "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to score on (default: all but the test views)");
     command->add_option("--max-train-views", args->max_train_views,
-                        "score on at most N training views, evenly spaced (default: all)");
-    command->add_option("--timing-views", args->timing_views, "test views to time (0: all)")->capture_default_str();
+                        "score on at most N training views, evenly spaced (default: all)")
+        ->check(count_in(0));
+    command->add_option("--timing-views", args->timing_views, "test views to time (0: all)")
+        ->capture_default_str()
+        ->check(count_in(0));
     command->add_option("--timing-reps", args->timing_reps,
                         "timed frames per view (0: time each test view's one measuring render instead)")
-        ->check(CLI::NonNegativeNumber)
+        ->check(count_in(0, 1000000))
         ->capture_default_str();
     command->add_option("--timing-warmup", args->timing_warmup, "untimed frames per view first")
-        ->check(CLI::NonNegativeNumber)
+        ->check(count_in(0, 1000000))
         ->capture_default_str();
     command->add_flag("--no-scoring-cost", args->no_scoring_cost,
                       "skip rendering the training views plainly to compare with scoring");
     command->add_option("--sheet-fractions", args->sheet_fractions,
                         "comparison sheets of the best method at these of the swept fractions")
         ->delimiter(',')
+        ->check(number_in(0.0, 1.0))
         ->capture_default_str();
     command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
         ->delimiter(',')
-        ->expected(3);
-    command->add_option("--seed", args->seed, "seed of the random method");
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
+    command->add_option("--seed", args->seed, "seed of the random method")->check(count_in(0));
     command->add_option("--recover", args->recover,
                         "also re-fit every pruned model to the photos for N iterations (prune --recover's schedule) "
                         "and add it as method <name>+recover; needs --images")
-        ->check(CLI::NonNegativeNumber);
+        ->check(count_in(0));
     command->add_option("--recover-rounds", args->recover_rounds, "prune-re-fit rounds of each --recover point")
         ->capture_default_str()
-        ->check(CLI::Range(1, 20));
+        ->check(count_in(1, 20));
     command->add_flag("--force", args->force, "overwrite the results of an earlier sweep in the folder");
     auto* cluster = command->add_option_group("cluster method", "with --methods ...,cluster: its stages' options "
                                                                  "(vksplat cluster; the same defaults)");

@@ -5,6 +5,7 @@
 
 #include "commands.hpp"
 #include "interrupt.hpp"
+#include "number_checks.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/train_scene.hpp"
 
@@ -92,23 +93,27 @@ void register_train(CLI::App& app, Action& action) {
     auto args = std::make_shared<TrainArgs>();
     command->add_option("data", args->data, "the data folder")->required()->check(CLI::ExistingDirectory);
     command->add_option("-o,--out", args->out, "output folder")->required();
-    command->add_option("--iters", args->iterations, "iterations (default 30000)")->check(CLI::PositiveNumber);
+    command->add_option("--iters", args->iterations, "iterations (default 30000)")->check(count_in(1));
     command->add_option("--max-gaussians", args->max_gaussians,
-                        "cap densification here, keeping the largest-gradient candidates");
+                        "cap densification here, keeping the largest-gradient candidates")
+        ->check(count_in(0));
     command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
-        ->check(CLI::Range(0.01, 1.0));
+        ->check(number_in(0.01, 1.0));
     command->add_option("--densify-until", args->densify_until,
                         "last iteration that clones, splits and prunes (0: never densify)")
-        ->capture_default_str();
+        ->capture_default_str()
+        ->check(count_in(0));
     command->add_option("--densify-grad-threshold", args->grad_threshold,
                         "mean NDC gradient of a Gaussian's projected mean above which it is cloned or split")
         ->capture_default_str()
-        ->check(CLI::PositiveNumber);
+        ->check(positive_number());
     command->add_flag("--white-background", args->white_background, "white instead of black behind the scene");
-    command->add_option("--test-every", args->test_every, "COLMAP: every N-th photo by name is a test view (default 8)");
+    command->add_option("--test-every", args->test_every,
+                        "COLMAP: every N-th photo by name is a test view (default 8; 0: none held out)")
+        ->check(count_in(0));
     command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
-        ->check(CLI::PositiveNumber);
-    command->add_option("--seed", args->seed, "seed of the view order and random starts");
+        ->check(count_in(1));
+    command->add_option("--seed", args->seed, "seed of the view order and random starts")->check(count_in(0));
     command->add_flag("--resume", args->resume, "continue from OUT_DIR/checkpoint");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_flag("--force", args->force, "overwrite existing outputs");

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "number_checks.hpp"
 #include "vksplat/error.hpp"
 #ifdef VKSPLAT_HAS_VIEWER
 #include "viewer.hpp"
@@ -53,9 +54,13 @@ void register_view(CLI::App& app, Action& action) {
         ->check(CLI::ExistingPath);
     command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, else +z)")
         ->delimiter(',')
-        ->expected(3);
+        ->expected(3)
+        ->check(number_in());
     command->add_option("--size", args->size, "window size WIDTHxHEIGHT");
-    command->add_option("--background", args->background, "background colour R,G,B in [0,1]")->delimiter(',')->expected(3);
+    command->add_option("--background", args->background, "background colour R,G,B in [0,1]")
+        ->delimiter(',')
+        ->expected(3)
+        ->check(number_in(0.0, 1.0));
     command->add_flag("--validation", args->validation, "enable Vulkan validation layers (slow; for debugging)");
     command->callback([&action, args] { action = [args] { return run_view(*args); }; });
 }
