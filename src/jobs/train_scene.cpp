@@ -280,11 +280,16 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"scene_extent", result.scene_extent},
                            {"train_views", data.train_views.size()},
                            {"test_views", data.test_views.size()},
-                           {"test_psnr", result.test.mean_psnr},
-                           {"test_ssim", result.test.mean_ssim},
+                           {"test_psnr", measured(result.test.mean_psnr)},
+                           {"test_ssim", measured(result.test.mean_ssim)},
                            {"test_psnr_per_view", result.test.psnr}};
     write_json(result.metrics_json, metrics, mode);
     return result;
 }
 
 }  // namespace vksplat::jobs
+    // No held-out views (COLMAP with --test-every 0, NeRF without transforms_test.json): no test
+    // quality, null rather than a PSNR of 0.
+    const auto measured = [&](double value) {
+        return result.test.psnr.empty() ? nlohmann::json() : nlohmann::json(value);
+    };

@@ -9,6 +9,7 @@
 #include <random>
 
 #include <glm/gtc/quaternion.hpp>
+#include <nlohmann/json.hpp>
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
@@ -205,6 +206,22 @@ TEST_F(TrainScene, TheMemoryBudgetCapsGrowthAndRefusesAStartThatCannotFit) {
         EXPECT_NE(std::string(e.what()).find("--memory-budget"), std::string::npos) << e.what();
     }
     EXPECT_FALSE(fs::exists(dir / "too_small" / "point_cloud.ply"));
+}
+
+TEST_F(TrainScene, WithNoHeldOutViewsNoTestQualityIsWritten) {
+    // --test-every 0 holds no view out: metrics.json must say there is no test PSNR, not 0 dB.
+    make_data("train_scene_no_test_views");
+    jobs::TrainRecipe r = recipe(10, 0);
+    r.test_every = 0;
+    const jobs::TrainingData data = jobs::load_training_data(dir / "data", r, 1.0, 0);
+    EXPECT_TRUE(data.test_views.empty());
+    const jobs::TrainResult result = train(data, r, "out");
+    EXPECT_TRUE(result.test.psnr.empty());
+    std::ifstream in(result.metrics_json);
+    const nlohmann::json metrics = nlohmann::json::parse(in);
+    EXPECT_EQ(metrics["test_views"], 0);
+    EXPECT_TRUE(metrics["test_psnr"].is_null()) << metrics["test_psnr"];
+    EXPECT_TRUE(metrics["test_ssim"].is_null()) << metrics["test_ssim"];
 }
 
 TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {

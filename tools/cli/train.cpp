@@ -75,9 +75,13 @@ int run_train(const TrainArgs& args) {
                 "peak device memory %.1f MB\n",
                 static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                 result.seconds, result.gpu_ms_per_iteration, result.gaussians, double(result.peak_device_bytes) / 1e6);
-    std::printf("test views (%zu): PSNR %.3f dB, SSIM %.4f\nwrote %s, %s, %s\n", result.test.psnr.size(),
-                result.test.mean_psnr, result.test.mean_ssim, result.ply.string().c_str(),
-                result.cameras_json.string().c_str(), result.metrics_json.string().c_str());
+    if (result.test.psnr.empty())
+        std::printf("test views: none held out, so no test PSNR or SSIM\n");
+    else
+        std::printf("test views (%zu): PSNR %.3f dB, SSIM %.4f\n", result.test.psnr.size(), result.test.mean_psnr,
+                    result.test.mean_ssim);
+    std::printf("wrote %s, %s, %s\n", result.ply.string().c_str(), result.cameras_json.string().c_str(),
+                result.metrics_json.string().c_str());
     return 0;
 }
 
