@@ -269,6 +269,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     for (size_t view : data.train_views) cameras.push_back(camera_json(data.cameras[view], view, "train"));
     for (size_t view : data.test_views) cameras.push_back(camera_json(data.cameras[view], view, "test"));
     write_json(result.cameras_json, cameras, mode);
+    // No held-out views (COLMAP with --test-every 0, NeRF without transforms_test.json): no test
+    // quality, null rather than a PSNR of 0.
+    const auto measured = [&](double value) {
+        return result.test.psnr.empty() ? nlohmann::json() : nlohmann::json(value);
+    };
     nlohmann::json metrics{{"data_format", data.format},
                            {"iterations", result.iterations},
                            {"skipped_steps", result.skipped},
@@ -288,8 +293,3 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
 }
 
 }  // namespace vksplat::jobs
-    // No held-out views (COLMAP with --test-every 0, NeRF without transforms_test.json): no test
-    // quality, null rather than a PSNR of 0.
-    const auto measured = [&](double value) {
-        return result.test.psnr.empty() ? nlohmann::json() : nlohmann::json(value);
-    };

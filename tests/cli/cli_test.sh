@@ -284,6 +284,18 @@ expect train 0 "test views (3): PSNR" -- "$vksplat" train "$work/train_data" -o 
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: train outputs missing"; }
 expect train-refuses-overwrite 2 "already exists" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20
 expect train-not-a-dataset 2 "holds neither a COLMAP model" -- "$vksplat" train "$work/photos3" -o "$work/trained2"
+# A NeRF folder without transforms_test.json holds no view out: no test PSNR, not 0 dB.
+mkdir -p "$work/nerf_data" && cp "$work/photos3/"*.png "$work/nerf_data/"
+cat >"$work/nerf_data/transforms_train.json" <<'JSON'
+{"camera_angle_x": 1.0383, "frames": [
+ {"file_path": "a", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]},
+ {"file_path": "b", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0.4], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]},
+ {"file_path": "c", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0.4], [0, 0, 1, 5], [0, 0, 0, 1]]}]}
+JSON
+expect train-no-test-views 0 "test views: none held out, so no test PSNR" -- "$vksplat" train "$work/nerf_data" \
+  -o "$work/trained_nerf" --iters 5 --quiet
+grep -q '"test_psnr": null' "$work/trained_nerf/metrics.json" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: metrics.json of a run without test views has a test PSNR"; }
 sed 's/"width": 80/"width": 81/' "$work/cameras.json" >"$work/wider.json"
 expect wrong-size-photo 2 "photo is 80x60 but camera 'top' renders 81x60" -- "$vksplat" render "$work/demo/demo.ply" \
   --cameras "$work/wider.json" --out "$work/z" --images "$work/photos"
@@ -341,15 +353,3 @@ expect sweep-refusal-names-force 2 "(--force replaces it)" -- "$vksplat" sweep "
 
 echo "cli: $passed passed, $failed failed"
 [ $failed -eq 0 ]
-# A NeRF folder without transforms_test.json holds no view out: no test PSNR, not 0 dB.
-mkdir -p "$work/nerf_data" && cp "$work/photos3/"*.png "$work/nerf_data/"
-cat >"$work/nerf_data/transforms_train.json" <<'JSON'
-{"camera_angle_x": 1.0383, "frames": [
- {"file_path": "a", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]},
- {"file_path": "b", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0.4], [0, 1, 0, 0], [0, 0, 1, 5], [0, 0, 0, 1]]},
- {"file_path": "c", "w": 80, "h": 60, "transform_matrix": [[1, 0, 0, 0], [0, 1, 0, 0.4], [0, 0, 1, 5], [0, 0, 0, 1]]}]}
-JSON
-expect train-no-test-views 0 "test views: none held out, so no test PSNR" -- "$vksplat" train "$work/nerf_data" \
-  -o "$work/trained_nerf" --iters 5 --quiet
-grep -q '"test_psnr": null' "$work/trained_nerf/metrics.json" && passed=$((passed + 1)) ||
-  { failed=$((failed + 1)); echo "FAILED: metrics.json of a run without test views has a test PSNR"; }
