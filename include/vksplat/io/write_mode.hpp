@@ -25,6 +25,10 @@ void write_file_atomically(const std::filesystem::path& path, WriteMode mode,
 // mode is refuse_existing, if it is a folder, or if its folder is missing or not writable.
 void check_writable(const std::filesystem::path& path, WriteMode mode);
 
+// Whether two paths name one file: the same inode where both exist (links, "./a" and "a"), else
+// the same path once made absolute and normalised (an output that does not exist yet).
+bool same_file(const std::filesystem::path& a, const std::filesystem::path& b);
+
 // Throws InputError naming `output` if it is one of `inputs` (the same file by any path or link):
 // no command writes over what it reads, whatever the WriteMode.
 void refuse_input_as_output(const std::filesystem::path& output, const std::vector<std::filesystem::path>& inputs);
