@@ -86,9 +86,8 @@ int main(int argc, char** argv) {
             std::fflush(stdout);
         };
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
+        options.notice = [](const std::string& line) { std::printf("%s\n", line.c_str()); };
         const jobs::TrainResult result = jobs::train_scene(context, data, photos, options, measure, progress);
-        for (size_t view : result.distrusted_cameras)
-            std::printf("distrusted camera: %s\n", data.cameras[view].name.c_str());
         std::printf("trained %llu iterations (skipped %llu) in %.1f s (densification %.1f s): %zu Gaussians, GPU median %.3f ms per "
                     "iteration, peak device memory %.1f MB, scene extent %.3f\n",
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),

@@ -8,10 +8,14 @@
 #include <map>
 #include <numeric>
 
+#include "jobs/fingerprint.hpp"
+#include "jobs/run_checkpoint.hpp"
+#include "stats/median.hpp"
 #include "vksplat/error.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/scene_extent.hpp"
-#include "stats/median.hpp"
+#include "vksplat/train/skipped_steps.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -41,18 +45,53 @@ train::Photo training_photo(const PhotoSource& photos, const Camera& camera, con
     return train::Photo::from_image(image, loss_mask);
 }
 
+namespace {
+
+// What a re-fit's checkpoint belongs to: the scene, the cameras and the recipe; --iters may change.
+train::CheckpointOwner finetune_owner(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                                      const FinetuneOptions& options, const std::vector<size_t>& train_views) {
+    return {options.source,
+            {{"scene", fingerprint(cloud)},
+             {"cameras", fingerprint(cameras)},
+             {"training views", list_text(train_views)},
+             {"background", colour_text(options.train.background)},
+             {"seed", std::to_string(options.seed)},
+             {"position rate", options.train.position_schedule == train::PositionSchedule::decay ? "decay" : "final"}}};
+}
+
+}  // namespace
+
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
                               const FinetuneOptions& options, const QualityProbe& quality,
                               const std::function<void(const FinetuneStatus&)>& progress) {
+    const auto notice = [&](const std::string& line) {
+        if (options.notice) options.notice(line);
+    };
     FinetuneResult result;
     ViewSplit split = split_views(cameras, options.test_views, options.train_views);
     result.test_views = std::move(split.test);
     result.train_views = std::move(split.train);
+    result.held_out = split.held_out;
     if (result.train_views.empty()) throw InputError("finetune", "no training views");
-    if (options.resume && (options.checkpoint.empty() || !std::filesystem::exists(options.checkpoint)))
-        throw InputError(options.checkpoint.empty() ? std::string("--resume") : options.checkpoint.string(),
-                         "no checkpoint to resume from");
+
+    // Outputs before anything slow: a run must not end in a refusal, nor write over what it read.
+    if (!options.out.empty()) {
+        io::refuse_input_as_output(options.out, options.inputs);
+        io::check_scene_writable(options.out, options.mode);
+    }
+    train::TrainOptions train_options = options.train;
+    train_options.checkpoint_owner = finetune_owner(cloud, cameras, options, result.train_views);
+    std::optional<train::CheckpointHeader> resumed;
+    if (!options.checkpoint.empty()) {
+        RunFiles files{options.checkpoint, options.inputs, {}};
+        if (!options.out.empty()) files.outputs.push_back(options.out);
+        resumed = check_run_checkpoint(files, train_options.checkpoint_owner, options.resume, options.mode);
+    } else if (options.resume) {
+        throw InputError("--resume", "no checkpoint to resume from");
+    }
+    if (!result.held_out)
+        notice(kTestViewsTrainedOnWarning);
 
     // Every photo is read and checked before the first step: a bad one found late would waste the run.
     std::map<size_t, train::Photo> train_photos;
@@ -61,15 +100,17 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
                                                   options.loss_masks ? options.loss_masks(view) : std::vector<uint8_t>{}));
     }
 
-    train::TrainOptions train_options = options.train;
     if (train_options.scene_extent <= 0) {
         std::vector<Camera> train_cameras;
         for (size_t view : result.train_views) train_cameras.push_back(cameras[view]);
         const train::SceneExtent extent = train::scene_extent(train_cameras);
         train_options.scene_extent = extent.radius;
-        for (size_t i : extent.distrusted) result.distrusted_cameras.push_back(result.train_views[i]);
+        for (size_t i : extent.distrusted)
+            notice("warning: camera '" + cameras[result.train_views[i]].name +
+                   "' lies far from the others; left out of the scene extent");
     }
     result.scene_extent = train_options.scene_extent;
+    if (resumed) notice(resume_notice(*resumed, options.iterations));
     if (train_options.position_schedule == train::PositionSchedule::decay)
         train_options.rates.position_decay_steps = static_cast<int>(std::min<uint64_t>(options.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
@@ -103,6 +144,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
         loss_sum += step.loss;
         mse_sum += std::pow(10.0, -step.psnr / 10.0);
         ++since_report;
+        train::check_skipped_steps(*trainer, options.source);
         const bool last = trainer->iteration() == options.iterations;
         if (!options.checkpoint.empty() && (trainer->iteration() % options.checkpoint_every == 0 || last))
             trainer->save_checkpoint(options.checkpoint);
@@ -131,7 +173,9 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     for (const auto& [label, times] : stage_times) result.stages.push_back({label, stats::median(times)});
     result.device_bytes = trainer->device_bytes();
     result.cloud = trainer->cloud();
-    if (quality && !result.interrupted) result.after = quality(result.cloud);
+    if (result.interrupted) return result;
+    if (quality) result.after = quality(result.cloud);
+    if (!options.out.empty()) io::write_scene(result.cloud, options.out, options.mode);
     return result;
 }
 

@@ -16,22 +16,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A file the job will write: checked before the work, so that minutes of rendering are not lost
-// to a refusal at the end (the writers check again).
-void check_writable(const fs::path& path, io::WriteMode mode) {
-    if (mode == io::WriteMode::refuse_existing && fs::exists(path))
-        throw InputError(path.string(), "already exists; not overwritten (ask for overwrite to replace it)");
-    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-    if (!fs::is_directory(folder))
-        throw InputError(path.string(), "cannot be written: folder " + folder.string() + " does not exist");
-}
-
 // Refusals that need no rendering, made before any (the selectors and writers check again).
 void check_options(const PruneOptions& options) {
     if (options.out.empty()) throw InputError("prune", "no output file given");
-    check_writable(options.out, options.mode);
-    for (const auto& path : {options.save_scores, options.save_totals})
-        if (path) check_writable(*path, options.mode);
+    // Every output checked before minutes of rendering (the writers check again), and none may be
+    // a file the job reads: the scene, its cameras, a scores file.
+    std::vector<fs::path> inputs = options.inputs;
+    if (options.load_scores) inputs.push_back(*options.load_scores);
+    for (const auto& path : {std::optional<fs::path>(options.out), options.save_scores, options.save_totals}) {
+        if (!path) continue;
+        io::refuse_input_as_output(*path, inputs);
+        io::check_writable(*path, options.mode);
+    }
     if (options.sh_degree && (*options.sh_degree < 0 || *options.sh_degree > 3))
         throw InputError("--sh-degree " + std::to_string(*options.sh_degree), "must lie in 0..3");
     if (const auto* ratio = std::get_if<DropRatio>(&options.selector); ratio && !(ratio->ratio >= 0 && ratio->ratio <= 1))

@@ -8,6 +8,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include "jobs/fingerprint.hpp"
+#include "jobs/output_folders.hpp"
+#include "jobs/run_checkpoint.hpp"
 #include "vksplat/camera_focus.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
@@ -16,6 +19,7 @@
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/initialize.hpp"
 #include "vksplat/train/scene_extent.hpp"
+#include "vksplat/train/skipped_steps.hpp"
 #include "stats/median.hpp"
 
 namespace vksplat::jobs {
@@ -81,6 +85,22 @@ void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode 
     io::write_file_atomically(path, mode, [&](std::ostream& out) { out << json.dump(2) << '\n'; });
 }
 
+// What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the
+// resolution trained) and the recipe; --iters may change.
+train::CheckpointOwner training_owner(const TrainingData& data, const TrainOptions& options) {
+    const auto& r = options.recipe;
+    return {"training from " + data.folder.string(),
+            {{"starting Gaussians", fingerprint(data.initial)},
+             {"cameras", fingerprint(data.cameras)},
+             {"training views", list_text(data.train_views)},
+             {"background", colour_text(options.background)},
+             {"seed", std::to_string(options.seed)},
+             {"densification", "until " + std::to_string(r.densify_until) + ", threshold " +
+                                   std::to_string(r.densify.grad_threshold) + ", at most " +
+                                   std::to_string(r.densify.max_gaussians)},
+             {"SH degree", std::to_string(r.sh_degree)}}};
+}
+
 }  // namespace
 
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
@@ -100,6 +120,8 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
         data.format = "colmap";
         const fs::path model = fs::exists(data_dir / "sparse" / "0") ? data_dir / "sparse" / "0" : data_dir / "sparse";
         data.cameras = io::read_colmap_cameras(model, &data.warnings);
+        for (const auto& entry : fs::directory_iterator(model))
+            if (entry.is_regular_file()) data.inputs.push_back(entry.path());
         refuse_distortion(data.warnings, model);
         points = io::read_sfm_points(model, &data.warnings);
         data.images_dir = data_dir / "images";
@@ -109,6 +131,7 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     } else if (fs::exists(data_dir / "transforms_train.json")) {
         data.format = "nerf-synthetic";
         data.cameras = io::read_nerf_transforms(data_dir / "transforms_train.json");
+        data.inputs = {data_dir / "transforms_train.json", data_dir / "transforms_test.json"};
         for (size_t i = 0; i < data.cameras.size(); ++i) data.train_views.push_back(i);
         if (fs::exists(data_dir / "transforms_test.json")) {
             const auto test = io::read_nerf_transforms(data_dir / "transforms_test.json");
@@ -122,6 +145,7 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     } else if (fs::exists(data_dir / "cameras.json")) {
         data.format = "inria";
         data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
+        data.inputs = {data_dir / "cameras.json"};
         data.test_views = default_test_views(data.cameras);
         // Without splits, a dozen cameras or fewer are all test and all training views (no held-out
         // set); a file whose splits name every camera a test view leaves nothing to train on.
@@ -138,6 +162,8 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     }
     if (!fs::is_directory(data.images_dir)) throw InputError(data.images_dir.string(), "no such folder of photos");
     if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
+    data.folder = data_dir;
+    data.held_out = views_held_out(data.test_views, data.train_views);
     if (resolution_scale != 1.0)
         for (auto& camera : data.cameras)
             camera = camera.resized(std::max(1, int(std::lround(camera.width * resolution_scale))),
@@ -155,11 +181,23 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     result.cameras_json = fs::absolute(options.out_dir / "cameras.json");
     result.metrics_json = fs::absolute(options.out_dir / "metrics.json");
     const fs::path checkpoint = options.out_dir / "checkpoint";
-    if (options.mode == io::WriteMode::refuse_existing && !options.resume)
-        for (const auto& path : {result.ply, result.cameras_json, result.metrics_json})
-            if (fs::exists(path)) throw InputError(path.string(), "already exists; not overwritten");
-    if (options.resume && !fs::exists(checkpoint)) throw InputError(checkpoint.string(), "no checkpoint to resume from");
-    fs::create_directories(options.out_dir);
+    const auto notice = [&](const std::string& line) {
+        if (options.notice) options.notice(line);
+    };
+    // Every output checked before anything slow: none may be an input (-o DATA would replace its
+    // cameras.json), none is replaced unless asked for or resuming, the folder must take files.
+    for (const auto& path : {result.ply, result.cameras_json, result.metrics_json, fs::absolute(checkpoint)})
+        io::refuse_input_as_output(path, data.inputs);
+    OutputFolders folders;  // removed again if the run is refused before it writes
+    folders.create(options.out_dir);
+    for (const auto& path : {result.ply, result.cameras_json, result.metrics_json})
+        io::check_writable(path, options.resume ? io::WriteMode::overwrite : options.mode);
+    train::TrainOptions train_options;
+    train_options.checkpoint_owner = training_owner(data, options);
+    const auto resumed = check_run_checkpoint({checkpoint, data.inputs, {result.ply, result.cameras_json, result.metrics_json}},
+                                              train_options.checkpoint_owner, options.resume, options.mode);
+    if (!data.held_out)
+        notice(kTestViewsTrainedOnWarning);
 
     // Photos first: a missing or mis-sized one is reported before any step.
     std::map<size_t, train::Photo> train_photos;
@@ -189,9 +227,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     std::vector<Camera> train_cameras;
     for (size_t view : data.train_views) train_cameras.push_back(data.cameras[view]);
     const train::SceneExtent extent = train::scene_extent(train_cameras);
-    for (size_t i : extent.distrusted) result.distrusted_cameras.push_back(data.train_views[i]);
+    for (size_t i : extent.distrusted)
+        notice("warning: camera '" + data.cameras[data.train_views[i]].name +
+               "' lies far from the others; left out of the scene extent");
+    if (resumed) notice(resume_notice(*resumed, recipe.iterations));
     result.scene_extent = extent.radius;
-    train::TrainOptions train_options;
     train_options.scene_extent = extent.radius;
     train_options.background = options.background;
     train_options.position_schedule = train::PositionSchedule::decay;
@@ -216,6 +256,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         trainer->set_sh_degree(int(std::min<uint64_t>(uint64_t(recipe.sh_degree), iteration / recipe.sh_degree_interval)));
         const size_t view = training_view(iteration - 1, options.seed, data.train_views);
         const train::StepResult step = trainer->step(data.cameras[view], train_photos.at(view));
+        train::check_skipped_steps(*trainer, "training from " + data.folder.string());
         step_times.push_back(step.gpu_milliseconds);
         result.peak_device_bytes = std::max(result.peak_device_bytes, trainer->device_bytes());
         loss_sum += step.loss;
@@ -263,7 +304,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     trainer.reset();  // its device memory goes before the test renders
     if (!test.cameras.empty() && measure) result.test = measure(trained, test);
 
-    const auto mode = io::WriteMode::overwrite;  // refused above unless asked for or resuming
+    const auto mode = io::WriteMode::overwrite;  // checked above: asked for, resuming, or new
     io::write_scene(trained, result.ply, mode, "ply");
     nlohmann::json cameras = nlohmann::json::array();
     for (size_t view : data.train_views) cameras.push_back(camera_json(data.cameras[view], view, "train"));

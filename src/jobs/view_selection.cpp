@@ -86,6 +86,11 @@ void check_view_indices(const std::vector<size_t>& views, size_t camera_count) {
             throw InputError("view " + std::to_string(view), "there are only " + std::to_string(camera_count) + " cameras");
 }
 
+bool views_held_out(const std::vector<size_t>& test, const std::vector<size_t>& train) {
+    return std::none_of(test.begin(), test.end(),
+                        [&](size_t view) { return std::find(train.begin(), train.end(), view) != train.end(); });
+}
+
 ViewSplit split_views(const std::vector<Camera>& cameras, const std::vector<size_t>& test,
                       const std::vector<size_t>& train) {
     ViewSplit split;
@@ -93,6 +98,7 @@ ViewSplit split_views(const std::vector<Camera>& cameras, const std::vector<size
     split.train = train.empty() ? default_train_views(cameras.size(), split.test) : train;
     check_view_indices(split.test, cameras.size());
     check_view_indices(split.train, cameras.size());
+    split.held_out = views_held_out(split.test, split.train);
     return split;
 }
 

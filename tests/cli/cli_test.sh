@@ -230,7 +230,7 @@ expect width-negative any-failure "--width: '-5' is not a whole number in [1, 16
 # and Ctrl-C: the run stops with its checkpoint and no output, and --resume finishes it.
 expect photos-of-three 0 "wrote 3 views" -- "$vksplat" render "$work/demo/demo.ply" --cameras "$work/three.json" \
   --out "$work/photos3" --background 1,1,1
-expect finetune 0 "test views (3) against the photos: PSNR" -- "$vksplat" finetune "$work/demo/demo.ply" \
+expect finetune 0 "test views (3, also trained on: not held out) against the photos: PSNR" -- "$vksplat" finetune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --images "$work/photos3" --background 1,1,1 --iters 10 --quiet -o "$work/refit.ply"
 expect finetune-refuses-overwrite 2 "refit.ply: already exists" -- "$vksplat" finetune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --images "$work/photos3" --iters 10 -o "$work/refit.ply"
@@ -258,6 +258,50 @@ done_before=$(grep -o "interrupted at iteration [0-9]*" "$work/stopped.log" | gr
 expect finetune-resume 0 "iterations: $((done_before + 5))" -- "$vksplat" finetune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --images "$work/photos3" --iters $((done_before + 5)) --resume --quiet \
   -o "$work/refit_stopped.ply"
+# Nothing the user gave is lost: a checkpoint is never the input, the output or a file of another
+# kind; only its own run continues it and only --force replaces it; no output is an input; a
+# wrong output is refused before the first step.
+same_file_or_fail() {  # NAME FILE COPY: FILE still holds what COPY holds
+  cmp -s "$2" "$3" && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: $1 changed $2"; }
+}
+cp "$work/demo/demo.ply" "$work/in.ply" && cp "$work/cameras.json" "$work/notes.json"
+finetune_in() { "$vksplat" finetune "$work/in.ply" --cameras "$work/three.json" --images "$work/photos3" --quiet "$@"; }
+expect finetune-checkpoint-is-input 2 "in.ply: is an input of this command" -- finetune_in --iters 5 \
+  --checkpoint "$work/in.ply" -o "$work/out1.ply"
+expect finetune-checkpoint-is-output 2 "out1.ply: is also the run's output" -- finetune_in --iters 5 \
+  --checkpoint "$work/out1.ply" -o "$work/out1.ply"
+expect finetune-checkpoint-not-a-checkpoint 2 "notes.json: exists and is not a vksplat checkpoint" -- finetune_in \
+  --iters 5 --checkpoint "$work/notes.json" --force -o "$work/out1.ply"
+expect finetune-output-is-input 2 "in.ply: is an input of this command" -- finetune_in --iters 5 --force -o "$work/in.ply"
+expect prune-output-is-input 2 "in.ply: is an input of this command" -- "$vksplat" prune "$work/in.ply" \
+  --cameras "$work/cameras.json" --method opacity --ratio 0.5 --force -o "$work/in.ply"
+same_file_or_fail finetune/prune "$work/in.ply" "$work/demo/demo.ply"
+same_file_or_fail finetune "$work/notes.json" "$work/cameras.json"
+[ ! -e "$work/out1.ply" ] && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: out1.ply written"; }
+expect finetune-unwritable-format 2 "out.xyz: unknown scene file extension" -- finetune_in --iters 5 -o "$work/out.xyz"
+expect finetune-missing-folder 2 "folder $work/nowhere does not exist" -- finetune_in --iters 5 -o "$work/nowhere/out.ply"
+[ ! -e "$work/out.xyz.checkpoint" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: a refused output still left a checkpoint"; }
+# A folder that takes no files (read-only for this user; /sys for root, who may write anywhere
+# else) is an input error naming the path, found before any work.
+mkdir -p "$work/readonly" && chmod a-w "$work/readonly"
+readonly_dir=
+if ! touch "$work/readonly/probe" 2>/dev/null; then readonly_dir=$work/readonly
+elif ! touch /sys/vksplat_probe 2>/dev/null; then readonly_dir=/sys; fi
+[ -n "$readonly_dir" ] && expect prune-read-only-folder 2 "$readonly_dir/out.ply: cannot be written: folder $readonly_dir" -- \
+  "$vksplat" prune "$work/in.ply" --cameras "$work/cameras.json" --method opacity --ratio 0.5 -o "$readonly_dir/out.ply"
+chmod u+w "$work/readonly"
+cp "$work/refit_stopped.ply.checkpoint" "$work/stopped.checkpoint.copy"
+expect finetune-rerun-keeps-checkpoint 2 "holds iteration $((done_before + 5)) of an earlier run" -- "$vksplat" finetune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" --iters 5 \
+  --checkpoint "$work/refit_stopped.ply.checkpoint" -o "$work/rerun.ply"
+same_file_or_fail finetune-rerun "$work/refit_stopped.ply.checkpoint" "$work/stopped.checkpoint.copy"
+expect finetune-resume-another-scene 2 "made by another run (finetune of $work/demo/demo.ply): its scene is" -- \
+  "$vksplat" finetune "$work/half.ply" --cameras "$work/three.json" --images "$work/photos3" --iters 50 --resume \
+  --checkpoint "$work/refit_stopped.ply.checkpoint" -o "$work/other.ply"
+expect finetune-resume-past-iters 0 "no steps are taken" -- "$vksplat" finetune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --images "$work/photos3" --iters 1 --resume --quiet \
+  --checkpoint "$work/refit_stopped.ply.checkpoint" -o "$work/past.ply"
 expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 --rounds 2 --images "$work/photos3" \
   --background 1,1,1 -o "$work/recovered.ply"
@@ -283,6 +327,24 @@ expect train 0 "test views (3): PSNR" -- "$vksplat" train "$work/train_data" -o 
 [ -f "$work/trained/point_cloud.ply" ] && [ -f "$work/trained/metrics.json" ] && [ -f "$work/trained/cameras.json" ] &&
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: train outputs missing"; }
 expect train-refuses-overwrite 2 "already exists" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20
+expect train-into-its-data 2 "cameras.json: is an input of this command" -- "$vksplat" train "$work/train_data" \
+  -o "$work/train_data" --iters 20 --force
+same_file_or_fail train-into-its-data "$work/train_data/cameras.json" "$work/three.json"
+# An interrupted run (outputs not yet written, checkpoint kept) is not silently restarted, and
+# another run (another seed: other random starts) cannot continue it.
+mkdir -p "$work/trained_cut" && cp "$work/trained/checkpoint" "$work/trained_cut/checkpoint"
+expect train-rerun-keeps-checkpoint 2 "holds iteration 20 of an earlier run" -- "$vksplat" train "$work/train_data" \
+  -o "$work/trained_cut" --iters 20 --white-background
+expect train-resume-another-run 2 "made by another run" -- "$vksplat" train "$work/train_data" -o "$work/trained_cut" \
+  --iters 30 --white-background --seed 1 --resume
+same_file_or_fail train-rerun "$work/trained_cut/checkpoint" "$work/trained/checkpoint"
+# Photos of another shape are refused at a resolution scale too, never stretched to fit.
+sed 's/"height": 60/"height": 50/' "$work/three.json" >"$work/three_short.json"
+"$vksplat" render "$work/demo/demo.ply" --cameras "$work/three_short.json" --out "$work/photos_short" >/dev/null 2>&1
+mkdir -p "$work/train_short" && cp "$work/three.json" "$work/train_short/cameras.json" &&
+  cp -r "$work/photos_short" "$work/train_short/images"
+expect train-scaled-wrong-aspect 2 "a resolution scale of 0.5 makes 40x25, but camera 'a' is 40x30" -- "$vksplat" train \
+  "$work/train_short" -o "$work/trained_short" --iters 5 --resolution-scale 0.5
 expect train-not-a-dataset 2 "holds neither a COLMAP model" -- "$vksplat" train "$work/photos3" -o "$work/trained2"
 # A NeRF folder without transforms_test.json holds no view out: no test PSNR, not 0 dB.
 mkdir -p "$work/nerf_data" && cp "$work/photos3/"*.png "$work/nerf_data/"

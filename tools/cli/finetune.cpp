@@ -34,10 +34,6 @@ void print_status(const jobs::FinetuneStatus& s, bool terminal) {
 }
 
 int run_finetune(const FinetuneArgs& args) {
-    const auto mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
-    // Refused before any work: minutes of training must not end in a refusal.
-    if (mode == io::WriteMode::refuse_existing && std::filesystem::exists(args.out))
-        throw InputError(args.out, "already exists; not overwritten (--force replaces it)");
     std::vector<std::string> notes;
     const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &notes);
@@ -54,6 +50,11 @@ int run_finetune(const FinetuneArgs& args) {
     options.checkpoint_every = args.checkpoint_every;
     options.resume = args.resume;
     options.stop = &stop_on_interrupt();
+    options.out = args.out;
+    options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    options.inputs = {args.scene, args.cameras};
+    options.source = "finetune of " + args.scene;
+    options.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     jobs::ViewSplit split = jobs::split_views(cameras, options.test_views, options.train_views);
     options.test_views = std::move(split.test);
     options.train_views = std::move(split.train);
@@ -77,9 +78,6 @@ int run_finetune(const FinetuneArgs& args) {
                                              [&](const jobs::FinetuneStatus& s) {
                                                  if (!args.quiet || s.iteration == s.iterations) print_status(s, terminal);
                                              });
-    for (size_t v : result.distrusted_cameras)
-        std::fprintf(stderr, "warning: camera '%s' lies far from the others; left out of the scene extent\n",
-                     cameras[v].name.c_str());
     if (result.sanitize.changed())
         std::fprintf(stderr, "sanitised %s: %s\n", args.scene.c_str(), result.sanitize.summary().c_str());
     if (result.interrupted) {
@@ -88,19 +86,19 @@ int run_finetune(const FinetuneArgs& args) {
                      args.out.c_str());
         return 130;
     }
-    io::write_scene(result.cloud, args.out, mode);
     std::printf("iterations: %llu (%llu skipped for non-finite gradients), %.1f s, GPU %.3f ms per iteration\n",
                 static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                 result.seconds, result.gpu_ms_per_iteration);
     for (const auto& stage : result.stages) std::printf("    %-20s %.3f ms\n", stage.stage.c_str(), stage.milliseconds);
     const size_t n = result.test_views.size();
+    const char* held = result.held_out ? "" : ", also trained on: not held out";
     if (result.before)
-        std::printf("test views (%zu) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", n,
+        std::printf("test views (%zu%s) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", n, held,
                     result.before->mean_psnr, result.after->mean_psnr, result.before->mean_ssim,
                     result.after->mean_ssim);
     else if (result.after)
-        std::printf("test views (%zu) against the photos: PSNR %.3f dB, SSIM %.4f\n", n, result.after->mean_psnr,
-                    result.after->mean_ssim);
+        std::printf("test views (%zu%s) against the photos: PSNR %.3f dB, SSIM %.4f\n", n, held,
+                    result.after->mean_psnr, result.after->mean_ssim);
     std::printf("device memory: %.1f MB\nwrote %s\n", double(result.device_bytes) / 1e6, args.out.c_str());
     return 0;
 }
@@ -111,9 +109,12 @@ void register_finetune(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("finetune", "re-fit a scene's Gaussians to its photos (Adam on the GPU)");
     command->footer(
         "The reference trainer's loss (0.8 L1 + 0.2 D-SSIM) and learning rates, the position rate at its\n"
-        "final value; one random training view per step; the test views are never trained on and are\n"
-        "measured before and after. A checkpoint (OUT.checkpoint unless --checkpoint) is kept every\n"
-        "--checkpoint-every iterations and on Ctrl-C; --resume continues from it.\n"
+        "final value; one random training view per step; the test views are not trained on (unless the\n"
+        "cameras leave no others: the run then says so) and are measured before and after.\n"
+        "A checkpoint (OUT.checkpoint unless --checkpoint) is kept every --checkpoint-every iterations\n"
+        "and on Ctrl-C; --resume continues from it, and only from a checkpoint of the same scene,\n"
+        "cameras and recipe. A checkpoint path is never the input or the output nor any other file;\n"
+        "an earlier run's checkpoint is replaced only with --force. No input is ever written over.\n"
         "Example:\n  vksplat finetune lego_half.ply --cameras lego/cameras.json --images lego/images \\\n"
         "      --background 1,1,1 --iters 5000 -o lego_half_refit.ply");
     auto args = std::make_shared<FinetuneArgs>();

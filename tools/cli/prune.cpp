@@ -96,6 +96,7 @@ int run_prune(const PruneArgs& args) {
     options.load_scores = optional_path(args.load_scores);
     options.out = args.out;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    options.inputs = {args.scene, args.cameras};
     if (args.recover) {
         jobs::RecoverOptions recover;
         recover.iterations = *args.recover;

@@ -38,6 +38,7 @@ int run_train(const TrainArgs& args) {
     options.checkpoint_every = args.checkpoint_every;
     options.resume = args.resume;
     options.stop = &stop_on_interrupt();
+    options.notice = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
 
     const jobs::TrainingData data =
         jobs::load_training_data(args.data, options.recipe, args.resolution_scale, args.seed);
@@ -54,7 +55,7 @@ int run_train(const TrainArgs& args) {
                  data.initial.size(), context.info().name.c_str());
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
     const auto result = jobs::train_scene(
-        context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale != 1.0), options,
+        context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale), options,
         measure, [&](const jobs::TrainStatus& s) {
             if (args.quiet && s.iteration != s.iterations) return;
             std::fprintf(stderr, "%siteration %llu/%llu  %zu Gaussians  loss %.4f  train PSNR %.2f dB  %.0f s, %.0f s left%s",
@@ -63,9 +64,6 @@ int run_train(const TrainArgs& args) {
                          s.seconds_left, terminal && s.iteration != s.iterations ? "   " : "\n");
             std::fflush(stderr);
         });
-    for (size_t v : result.distrusted_cameras)
-        std::fprintf(stderr, "warning: camera '%s' lies far from the others; left out of the scene extent\n",
-                     data.cameras[v].name.c_str());
     if (result.interrupted) {
         std::fprintf(stderr, "\ninterrupted at iteration %llu: state saved in %s/checkpoint (--resume continues)\n",
                      static_cast<unsigned long long>(result.iterations), args.out.c_str());

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "vksplat/camera.hpp"
@@ -26,10 +27,12 @@ namespace vksplat::jobs {
 // The photo of a camera, composited on the background where it has alpha. Throws InputError
 // naming the file when it is missing or unreadable.
 using PhotoSource = std::function<io::ImageRGB(const Camera&)>;
-// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb, and
-// resized (area averaging) to the camera's size where `resize` is set and they differ.
+// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb. With a
+// resolution_scale other than 1 the cameras were scaled by it (jobs::load_training_data): each photo
+// must scale to its camera's size exactly (else InputError naming the file; never stretched) and is
+// resized to it by area averaging.
 PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background,
-                             bool resize = false);
+                             double resolution_scale = 1.0);
 
 // The photo of `camera` read through `photos`: refused (InputError naming the camera) when its
 // size is not the camera's.
@@ -53,11 +56,24 @@ struct FinetuneOptions {
     LossMasks loss_masks;              // empty: every pixel counts
     train::TrainOptions train;         // rates (position at its final rate by default), loss, background
     uint64_t seed = 0;                 // the order of the training views
-    // Where the checkpoint lives; empty: no checkpoints (and no resume).
+    // Where the checkpoint lives; empty: no checkpoints (and no resume). It follows the rules of
+    // every run's checkpoint (src/jobs/run_checkpoint.hpp): none of `inputs`, not `out`, never a
+    // file of another kind; an earlier run's checkpoint is continued (resume, which checks that it
+    // belongs to this scene, cameras and recipe) or replaced (mode overwrite), else refused.
     std::filesystem::path checkpoint;
     uint64_t checkpoint_every = 1000;
     bool resume = false;               // continue from `checkpoint` (which must exist)
     const std::atomic<bool>* stop = nullptr;  // raised: checkpoint and return with interrupted set
+
+    // Where the re-fitted scene is written (io::write_scene, format by extension); checked, with
+    // the checkpoint, before anything else. Empty: not written (FinetuneResult::cloud only).
+    std::filesystem::path out;
+    io::WriteMode mode = io::WriteMode::refuse_existing;  // for `out` and an earlier checkpoint
+    std::vector<std::filesystem::path> inputs;  // files the scene and cameras came from: never written
+    std::string source = "finetune";   // names the run in checkpoint messages ("finetune of a.ply")
+    // Warnings and notes for the user, each a line, given before the first step (cameras left out
+    // of the extent, test views that are also trained on, where a resume starts).
+    std::function<void(const std::string&)> notice;
 
     // The position rate at its final value, and the scene extent (0) found from the training
     // cameras by train::scene_extent. With PositionSchedule::decay the position rate falls from
@@ -88,13 +104,15 @@ struct FinetuneResult {
     std::vector<StageTiming> stages;     // median GPU time of each pass
     uint64_t device_bytes = 0;           // the trainer's device memory
     std::vector<size_t> train_views, test_views;
+    bool held_out = true;                // no test view was trained on (ViewSplit::held_out)
     double scene_extent = 0;             // what the position rate was scaled by
-    std::vector<size_t> distrusted_cameras;  // left out of the extent (train::scene_extent)
 };
 
-// Loads the training views' photos (checking each against its camera's size), then steps.
-// Throws InputError before any step for missing or mis-sized photos, bad view indices, or a
-// resume without a checkpoint.
+// Checks the output and the checkpoint, loads the training views' photos (checking each against
+// its camera's size), then steps, and writes options.out. Throws InputError before any step for an
+// output or checkpoint it may not write, missing or mis-sized photos, bad view indices, or a resume
+// without a checkpoint of this run; and during the run when steps keep being skipped for
+// non-finite gradients (train::check_skipped_steps).
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
                               const FinetuneOptions& options, const QualityProbe& quality = {},

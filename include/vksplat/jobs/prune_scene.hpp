@@ -56,6 +56,8 @@ struct PruneOptions {
     std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene (.ply)
     io::WriteMode mode = io::WriteMode::refuse_existing;
+    // The files the scene and cameras were read from: no output may be one of them, whatever mode.
+    std::vector<std::filesystem::path> inputs;
 };
 
 struct PruneResult {

@@ -50,6 +50,9 @@ struct TrainingData {
     GaussianCloud initial;
     std::filesystem::path images_dir;   // where the photos are found by camera name
     std::vector<std::string> warnings;
+    std::filesystem::path folder;       // the data folder, to name the run
+    std::vector<std::filesystem::path> inputs;  // the camera and point files read: never written over
+    bool held_out = true;               // no test view is also a training view (ViewSplit::held_out)
 };
 
 // Reads cameras, the split and the starting Gaussians. `resolution_scale` (0 < s <= 1) shrinks the
@@ -67,8 +70,12 @@ struct TrainOptions {
     std::filesystem::path out_dir;      // point_cloud.ply, cameras.json, metrics.json, checkpoint
     io::WriteMode mode = io::WriteMode::refuse_existing;
     uint64_t checkpoint_every = 5000;
-    bool resume = false;                // from out_dir/checkpoint
+    // From out_dir/checkpoint, which must belong to this data, cameras and recipe; without resume
+    // an existing checkpoint is replaced only with mode overwrite (jobs/run_checkpoint.hpp).
+    bool resume = false;
     const std::atomic<bool>* stop = nullptr;
+    // Warnings and notes for the user, each a line, given before the first step.
+    std::function<void(const std::string&)> notice;
 };
 
 struct TrainStatus {
@@ -87,7 +94,6 @@ struct TrainResult {
     uint64_t peak_device_bytes = 0;
     prune::Quality test;                // on the test views against the photos
     double scene_extent = 0;
-    std::vector<size_t> distrusted_cameras;
     std::filesystem::path ply, cameras_json, metrics_json;
 };
 
@@ -95,8 +101,10 @@ struct TrainResult {
 using TestMeasure = std::function<prune::Quality(const GaussianCloud&, const prune::TestViews&)>;
 
 // Trains from `data` (load_training_data), the photos read through `photos` (at the cameras'
-// size), and writes the outputs into options.out_dir. Refuses existing outputs (unless
-// options.mode says overwrite) and missing or mis-sized photos before the first step.
+// size), and writes the outputs into options.out_dir. Refuses before the first step: outputs that
+// are inputs (whatever the mode), existing outputs (unless options.mode says overwrite or the run
+// resumes), a checkpoint it may not continue or replace, and missing or mis-sized photos. Stops with
+// InputError when steps keep being skipped for non-finite gradients (train::check_skipped_steps).
 TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
                         const TrainOptions& options, const TestMeasure& measure,
                         const std::function<void(const TrainStatus&)>& progress = {});

@@ -31,7 +31,17 @@ void check_view_indices(const std::vector<size_t>& views, size_t camera_count);
 // cameras (check_view_indices).
 struct ViewSplit {
     std::vector<size_t> test, train;
+    // No test view is also a training view: figures measured on the test views are held out. False
+    // where the lists given overlap or the defaults left nothing else to train on (13 cameras or
+    // fewer without a split); a job that trains says so before its first step.
+    bool held_out = true;
 };
+// True when no view of `test` is in `train`.
+bool views_held_out(const std::vector<size_t>& test, const std::vector<size_t>& train);
+// What a training job says before its first step where ViewSplit::held_out is false.
+inline constexpr const char* kTestViewsTrainedOnWarning =
+    "warning: the test views are also training views (the cameras leave no others), so the figures "
+    "measured on them are not held out";
 ViewSplit split_views(const std::vector<Camera>& cameras, const std::vector<size_t>& test,
                       const std::vector<size_t>& train);
 
