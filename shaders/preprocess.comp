@@ -22,10 +22,10 @@
 #include "frame.glsl"
 #include "sh.glsl"
 #include "tile_culling.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x = 256) in;
-#include "radix_digit_counts.glsl"
+#include "shaders/sort/radix_digit_counts.glsl"
 
 layout(push_constant) uniform Push {
     CameraBuffer camera;

@@ -12,7 +12,7 @@
 
 // Any subgroup size, down to 1 (lavapipe runs 4 or 8).
 #define WGS_MAX_SUBGROUPS BATCH
-#include "workgroup_scan.glsl"
+#include "shaders/common/workgroup_scan.glsl"
 WGS_DEFINE_EXCLUSIVE_ADD(uvec2, workgroup_exclusive_add2, wgs_partials2)
 
 // block_hits[block * BATCH + i]: the batch slot of the block's i-th splat; block_hit_count[block]

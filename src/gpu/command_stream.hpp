@@ -11,6 +11,7 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 
 namespace vksplat::gpu {
 
@@ -32,15 +33,22 @@ public:
     CommandStream& operator=(const CommandStream&) = delete;
 
     void begin();
-    void dispatch(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes, uint32_t groups_x,
-                  uint32_t groups_y = 1);
+    // Records `kernel` over groups_x x groups_y workgroups with its push constants: only its own
+    // push type is accepted (gpu/kernel.hpp).
+    template <class K>
+    void dispatch(const Kernel<K>& kernel, const typename K::Push& push, uint32_t groups_x, uint32_t groups_y = 1) {
+        dispatch(kernel, &push, sizeof(push), groups_x, groups_y);
+    }
+    // Group counts come from a VkDispatchIndirectCommand the GPU wrote at `offset` of `args`.
+    template <class K>
+    void dispatch_indirect(const Kernel<K>& kernel, const typename K::Push& push, const Buffer& args,
+                           VkDeviceSize offset) {
+        dispatch_indirect(kernel, &push, sizeof(push), args, offset);
+    }
     template <class Push>
     void dispatch(const ComputePipeline& pipeline, const Push& push, uint32_t groups_x, uint32_t groups_y = 1) {
         dispatch(pipeline, &push, sizeof(Push), groups_x, groups_y);
     }
-    // Group counts come from a VkDispatchIndirectCommand the GPU wrote at `offset` of `args`.
-    void dispatch_indirect(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes,
-                           const Buffer& args, VkDeviceSize offset);
     template <class Push>
     void dispatch_indirect(const ComputePipeline& pipeline, const Push& push, const Buffer& args, VkDeviceSize offset) {
         dispatch_indirect(pipeline, &push, sizeof(Push), args, offset);
@@ -70,6 +78,11 @@ public:
     const Context& context() const { return context_; }
 
 private:
+    void dispatch(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes, uint32_t groups_x,
+                  uint32_t groups_y);
+    void dispatch_indirect(const ComputePipeline& pipeline, const void* push, uint32_t push_bytes,
+                           const Buffer& args, VkDeviceSize offset);
+
     const Context& context_;
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;

@@ -3,26 +3,11 @@
 #include <algorithm>
 #include <stdexcept>
 
-#include "shaders/scan_lookback.spv.h"
-#include "shaders/scan_setup.spv.h"
+#include "shaders/sort/scan_lookback.kernel.hpp"
+#include "shaders/sort/scan_setup.kernel.hpp"
 
 namespace vksplat::gpu {
 namespace {
-
-struct SetupPush {
-    VkDeviceAddress count;
-    VkDeviceAddress control;
-    uint32_t capacity;
-    uint32_t block;
-};
-
-struct ScanPush {
-    VkDeviceAddress input;
-    VkDeviceAddress gather;
-    VkDeviceAddress output;
-    VkDeviceAddress control;
-    VkDeviceAddress total;
-};
 
 // Specialisation constants of the scan kernel: workgroup size, items per invocation, the most
 // subgroups a workgroup can have (which sizes the shared array of subgroup partials) and the polls
@@ -44,16 +29,19 @@ PrefixScan::Scratch::Scratch(const Context& context, uint32_t max_count)
     : capacity_(max_count), buffer_(context, bytes_for(context, max_count), MemoryKind::device, "prefix scan scratch") {}
 
 PrefixScan::PrefixScan(const Context& context, uint32_t lookback_spins) {
-    setup_ = std::make_unique<ComputePipeline>(context, scan_setup_spv, sizeof(SetupPush), std::vector<uint32_t>{},
-                                               "scan_setup");
-    scan_ = std::make_unique<ComputePipeline>(context, scan_lookback_spv, sizeof(ScanPush),
-                                              scan_constants(context, lookback_spins), "scan_lookback");
+    setup_ = std::make_unique<Kernel<shader::sort::ScanSetupKernel>>(context);
+    scan_ = std::make_unique<Kernel<shader::sort::ScanLookbackKernel>>(context, scan_constants(context, lookback_spins));
 }
 
 PrefixScan::~PrefixScan() = default;
 
 void PrefixScan::record_setup(CommandStream& stream, VkDeviceAddress count_address, Scratch& scratch) const {
-    stream.dispatch(*setup_, SetupPush{count_address, scratch.buffer().address(), scratch.capacity(), block_size}, 1);
+    stream.dispatch(*setup_,
+                    {.count = count_address,
+                     .control = scratch.buffer().address(),
+                     .capacity = scratch.capacity(),
+                     .block = block_size},
+                    1);
 }
 
 void PrefixScan::record(CommandStream& stream, VkDeviceAddress input, VkDeviceAddress output,
@@ -61,7 +49,12 @@ void PrefixScan::record(CommandStream& stream, VkDeviceAddress input, VkDeviceAd
     // A block that sums an unpublished predecessor itself reads that block's input, which the
     // predecessor may be overwriting if output were input.
     if (input == output) throw std::invalid_argument("PrefixScan: input and output must differ (no scan in place)");
-    stream.dispatch_indirect(*scan_, ScanPush{input, gather, output, scratch.buffer().address(), total_address},
+    stream.dispatch_indirect(*scan_,
+                             {.input_values = input,
+                              .gather = gather,
+                              .output_values = output,
+                              .control = scratch.buffer().address(),
+                              .total = total_address},
                              scratch.buffer(), 0);
 }
 

@@ -5,13 +5,20 @@
 // (with a fallback that needs no forward-progress guarantee: scan_lookback.comp). The setup is
 // recorded apart so that a frame can run it beside earlier work, as soon as the count is known:
 // each kernel in a chain costs a few microseconds however little it does. Sums are exact below
-// 2^30 and saturate there. Works for any subgroup size.
+// 2^30 and saturate there. Works for any subgroup size. Kernels: shaders/sort/scan_*.comp, layouts
+// in shaders/sort/prefix_scan.h.
 #include <cstdint>
 #include <memory>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
+#include "shaders/sort/prefix_scan.h"
+
+namespace vksplat::shader::sort {
+struct ScanSetupKernel;
+struct ScanLookbackKernel;
+}  // namespace vksplat::shader::sort
 
 namespace vksplat::gpu {
 
@@ -45,7 +52,7 @@ public:
         uint64_t device_bytes() const { return buffer_.size(); }
         // Layout of buffer(), in uints: [0..2] VkDispatchIndirectCommand, [3] count (clamped to
         // capacity), [4] number of blocks, [16..] one look-back word per block.
-        static constexpr uint32_t lookback_offset = 16;
+        static constexpr uint32_t lookback_offset = shader::sort::SCAN_LOOKBACK;
 
     private:
         uint32_t capacity_ = 0;
@@ -67,8 +74,8 @@ public:
                 Scratch& scratch, VkDeviceAddress gather = 0) const;
 
 private:
-    std::unique_ptr<ComputePipeline> setup_;
-    std::unique_ptr<ComputePipeline> scan_;
+    std::unique_ptr<Kernel<shader::sort::ScanSetupKernel>> setup_;
+    std::unique_ptr<Kernel<shader::sort::ScanLookbackKernel>> scan_;
 };
 
 }  // namespace vksplat::gpu

@@ -6,19 +6,22 @@
 #include <stdexcept>
 #include <string>
 
-#include "shaders/radix_block_histogram.spv.h"
-#include "shaders/radix_histogram.spv.h"
-#include "shaders/radix_scan_histogram.spv.h"
-#include "shaders/radix_scatter.spv.h"
-#include "shaders/radix_scatter_one_sweep.spv.h"
-#include "shaders/radix_setup.spv.h"
+#include "shaders/sort/radix_block_histogram.kernel.hpp"
+#include "shaders/sort/radix_histogram.kernel.hpp"
+#include "shaders/sort/radix_scan_histogram.kernel.hpp"
+#include "shaders/sort/radix_scatter.kernel.hpp"
+#include "shaders/sort/radix_scatter_one_sweep.kernel.hpp"
+#include "shaders/sort/radix_setup.kernel.hpp"
 
 namespace vksplat::gpu {
 namespace {
 
+using namespace shader::sort;
+
 constexpr uint32_t kMaxDigitBits = 8;
-constexpr uint32_t kRadixMax = 1u << kMaxDigitBits;
-constexpr uint32_t kMaxPasses = RadixSort::max_passes;
+constexpr uint32_t kRadixMax = RADIX_MAX;
+static_assert(kRadixMax == 1u << kMaxDigitBits);
+constexpr uint32_t kMaxPasses = MAX_PASSES;
 constexpr uint32_t kItemsPerThread = 16;
 // Per digit, the scatter keeps a count per subgroup (the ranking loops over them), so subgroups
 // per workgroup are capped.
@@ -67,67 +70,10 @@ uint32_t blocks_for(uint32_t count, uint32_t block) {
     return static_cast<uint32_t>((uint64_t(count) + block - 1) / block);
 }
 
-struct SetupPush {
-    VkDeviceAddress count;
-    VkDeviceAddress control;
-    uint32_t capacity;
-    uint32_t block;
-};
-
-struct HistogramPush {
-    VkDeviceAddress keys;
-    VkDeviceAddress lookback;
-    VkDeviceAddress control;
-    VkDeviceAddress totals;
-    uint32_t digits[kMaxPasses];  // per pass: first bit | bit count << 8
-    uint32_t passes;
-};
-
-struct BlockHistogramPush {
-    VkDeviceAddress keys;
-    VkDeviceAddress histogram;
-    VkDeviceAddress control;
-    VkDeviceAddress totals;
-    uint32_t shift;
-    uint32_t bits;
-};
-
-struct ScanHistogramPush {
-    VkDeviceAddress histogram;
-    VkDeviceAddress control;
-    VkDeviceAddress totals;
-    uint32_t bits;
-};
-
 // Control buffer: 16 words written by radix_setup, then per-pass digit totals.
-constexpr VkDeviceSize kTotalsOffset = 64;
+constexpr VkDeviceSize kTotalsOffset = RADIX_TOTALS * 4;
 constexpr VkDeviceSize kTotalsBytes = VkDeviceSize(kMaxPasses) * kRadixMax * 4;
 constexpr VkDeviceSize kControlBytes = kTotalsOffset + kTotalsBytes;
-constexpr uint32_t kMaxGroupsX = 65535;  // MAX_GROUPS_X of buffers.glsl
-
-struct OneSweepScatterPush {
-    VkDeviceAddress keys_in;
-    VkDeviceAddress values_in;
-    VkDeviceAddress keys_out;
-    VkDeviceAddress values_out;
-    VkDeviceAddress lookback;
-    VkDeviceAddress control;
-    VkDeviceAddress totals;
-    uint32_t pass;
-    uint32_t shift;
-    uint32_t bits;
-};
-
-struct ScatterPush {
-    VkDeviceAddress keys_in;
-    VkDeviceAddress values_in;
-    VkDeviceAddress keys_out;
-    VkDeviceAddress values_out;
-    VkDeviceAddress histogram;
-    VkDeviceAddress control;
-    uint32_t shift;
-    uint32_t bits;
-};
 
 // The per-block words: look-back words of every pass for one-sweep sorts, one pass's histogram
 // for larger ones.
@@ -158,24 +104,18 @@ uint64_t RadixSort::Scratch::bytes_for(const Context& context, uint32_t max_coun
 RadixSort::RadixSort(const Context& context, uint32_t lookback_spins) {
     const Config config = config_for(context.info());
     block_size_ = config.block_size();
-    setup_ = std::make_unique<ComputePipeline>(context, radix_setup_spv, sizeof(SetupPush), std::vector<uint32_t>{},
-                                               "radix_setup");
-    histogram_ = std::make_unique<ComputePipeline>(context, radix_histogram_spv, sizeof(HistogramPush),
-                                                   std::vector<uint32_t>{config.workgroup_size, kItemsPerThread},
-                                                   "radix_histogram");
-    block_histogram_ = std::make_unique<ComputePipeline>(
-        context, radix_block_histogram_spv, sizeof(BlockHistogramPush),
-        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread}, "radix_block_histogram");
-    scan_histogram_ = std::make_unique<ComputePipeline>(
-        context, radix_scan_histogram_spv, sizeof(ScanHistogramPush),
-        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups}, "radix_scan_histogram");
-    one_sweep_scatter_ = std::make_unique<ComputePipeline>(
-        context, radix_scatter_one_sweep_spv, sizeof(OneSweepScatterPush),
-        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups, lookback_spins},
-        "radix_scatter_one_sweep");
-    scatter_ = std::make_unique<ComputePipeline>(
-        context, radix_scatter_spv, sizeof(ScatterPush),
-        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups}, "radix_scatter");
+    setup_ = std::make_unique<Kernel<RadixSetupKernel>>(context);
+    histogram_ = std::make_unique<Kernel<RadixHistogramKernel>>(
+        context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread});
+    block_histogram_ = std::make_unique<Kernel<RadixBlockHistogramKernel>>(
+        context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread});
+    scan_histogram_ = std::make_unique<Kernel<RadixScanHistogramKernel>>(
+        context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups});
+    one_sweep_scatter_ = std::make_unique<Kernel<RadixScatterOneSweepKernel>>(
+        context,
+        std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups, lookback_spins});
+    scatter_ = std::make_unique<Kernel<RadixScatterKernel>>(
+        context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread, config.max_subgroups});
 }
 
 RadixSort::~RadixSort() = default;
@@ -199,8 +139,10 @@ bool RadixSort::one_sweep(uint64_t capacity) const {
 void RadixSort::record_setup(CommandStream& stream, const Buffer& keys, const Buffer& values,
                              VkDeviceAddress count_address, Scratch& scratch) const {
     stream.dispatch(*setup_,
-                    SetupPush{count_address, scratch.control_.address(),
-                              static_cast<uint32_t>(capacity(keys, values, scratch)), block_size_},
+                    {.count = count_address,
+                     .control = scratch.control_.address(),
+                     .capacity = static_cast<uint32_t>(capacity(keys, values, scratch)),
+                     .block = block_size_},
                     1);
 }
 
@@ -209,7 +151,7 @@ RadixSort::DigitCounting RadixSort::digits_for(uint32_t key_bits) {
         throw std::invalid_argument("RadixSort: key_bits must be 1..32, not " + std::to_string(key_bits));
     // Bits spread as evenly as possible over the passes: the first `extra` passes take base + 1
     // bits, the rest base bits (possibly 0: a stable copy).
-    DigitCounting layout;
+    DigitCounting layout{};
     layout.passes = passes_for(key_bits);
     const uint32_t base = key_bits / layout.passes;
     const uint32_t extra = key_bits % layout.passes;
@@ -234,7 +176,7 @@ std::optional<RadixSort::DigitCounting> RadixSort::record_host_setup(CommandStre
     const uint32_t clamped = static_cast<uint32_t>(std::min<uint64_t>(count, held));
     const uint32_t blocks = blocks_for(clamped, block_size_);
     std::array<uint32_t, kControlBytes / 4> control{};
-    control[0] = std::min(blocks, kMaxGroupsX);
+    control[0] = std::min(blocks, shader::MAX_GROUPS_X);
     control[1] = control[2] = 1;
     control[3] = clamped;
     control[4] = blocks;
@@ -261,7 +203,12 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
     const VkDeviceAddress control = scratch.control_.address();
     const VkDeviceAddress block_words = scratch.block_words_.address();
     if (sweep && !digits_counted) {
-        HistogramPush histogram{keys.address(), block_words, control, control + kTotalsOffset, {}, passes};
+        RadixHistogramPush histogram{.keys = keys.address(),
+                                     .lookback = block_words,
+                                     .control = control,
+                                     .totals = control + kTotalsOffset,
+                                     .digits = {},
+                                     .passes = passes};
         for (uint32_t pass = 0; pass < passes; ++pass) histogram.digits[pass] = layout.digits[pass];
         stream.dispatch_indirect(*histogram_, histogram, scratch.control_, 0);
         stream.barrier();
@@ -275,25 +222,42 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
         const VkDeviceAddress totals = control + kTotalsOffset + VkDeviceSize(pass) * kRadixMax * 4;
         if (!sweep) {
             stream.dispatch_indirect(*block_histogram_,
-                                     BlockHistogramPush{source_keys->address(), block_words, control, totals,
-                                                        shifts[pass], bits[pass]},
+                                     {.keys = source_keys->address(),
+                                      .hist = block_words,
+                                      .control = control,
+                                      .totals = totals,
+                                      .shift = shifts[pass],
+                                      .bits = bits[pass]},
                                      scratch.control_, 0);
             stream.barrier();
-            stream.dispatch(*scan_histogram_, ScanHistogramPush{block_words, control, totals, bits[pass]},
+            stream.dispatch(*scan_histogram_,
+                            {.hist = block_words, .control = control, .totals = totals, .bits = bits[pass]},
                             1u << bits[pass]);
             stream.barrier();
         }
         if (sweep)
             stream.dispatch_indirect(*one_sweep_scatter_,
-                                     OneSweepScatterPush{source_keys->address(), source_values->address(),
-                                                         target_keys->address(), target_values->address(), block_words,
-                                                         control, totals, pass, shifts[pass], bits[pass]},
+                                     {.keys_in = source_keys->address(),
+                                      .values_in = source_values->address(),
+                                      .keys_out = target_keys->address(),
+                                      .values_out = target_values->address(),
+                                      .lookback = block_words,
+                                      .control = control,
+                                      .totals = totals,
+                                      .pass = pass,
+                                      .shift = shifts[pass],
+                                      .bits = bits[pass]},
                                      scratch.control_, 0);
         else
             stream.dispatch_indirect(*scatter_,
-                                     ScatterPush{source_keys->address(), source_values->address(),
-                                                 target_keys->address(), target_values->address(), block_words,
-                                                 control, shifts[pass], bits[pass]},
+                                     {.keys_in = source_keys->address(),
+                                      .values_in = source_values->address(),
+                                      .keys_out = target_keys->address(),
+                                      .values_out = target_values->address(),
+                                      .hist = block_words,
+                                      .control = control,
+                                      .shift = shifts[pass],
+                                      .bits = bits[pass]},
                                      scratch.control_, 0);
         if (pass + 1 < passes) stream.barrier();
         std::swap(source_keys, target_keys);

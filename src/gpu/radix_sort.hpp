@@ -8,6 +8,7 @@
 // guarantee: 1 + passes kernels), large ones a block histogram and its scan per pass
 // (3 x passes kernels). A frame's fixed cost is its chain of dependent kernels, about 4.5 us each
 // on an H100 however little they do; large sorts are bound by memory instead.
+// Kernels: shaders/sort/radix_*.comp, layouts in shaders/sort/radix_sort.h.
 // Works for any subgroup size (sizes come from DeviceInfo as specialisation constants; the
 // workgroup size is a multiple of the subgroup size, and subgroups are assumed to be full, as
 // every driver we know of runs them for such workgroups).
@@ -17,7 +18,17 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
+#include "shaders/sort/radix_sort.h"
+
+namespace vksplat::shader::sort {
+struct RadixSetupKernel;
+struct RadixHistogramKernel;
+struct RadixScatterOneSweepKernel;
+struct RadixBlockHistogramKernel;
+struct RadixScanHistogramKernel;
+struct RadixScatterKernel;
+}  // namespace vksplat::shader::sort
 
 namespace vksplat::gpu {
 
@@ -54,18 +65,12 @@ public:
     };
 
     // Digit passes of at most 8 bits: keys of up to 32 bits.
-    static constexpr uint32_t max_passes = 4;
+    static constexpr uint32_t max_passes = shader::sort::MAX_PASSES;
 
     // What a kernel that writes a sort's keys needs to stand in for the histogram kernel
-    // (shaders/include/radix_digit_counts.glsl): count the keys' digits into the per-pass totals
+    // (shaders/sort/radix_digit_counts.glsl): count the keys' digits into the per-pass totals
     // and empty the look-back words.
-    struct DigitCounting {
-        VkDeviceAddress totals = 0;         // [pass][digit], zeroed by record_host_setup
-        VkDeviceAddress lookback = 0;       // lookback_words words to set to LOOKBACK_EMPTY
-        uint32_t digits[max_passes] = {};  // per pass: first bit | bit count << 8
-        uint32_t passes = 0;
-        uint32_t lookback_words = 0;
-    };
+    using DigitCounting = shader::sort::DigitCounting;
 
     // Where the count of pairs is known when recording: records the setup of a sort of
     // min(count, capacity) pairs as buffer writes (no kernel), to be made visible by the caller's
@@ -112,12 +117,12 @@ private:
     bool one_sweep(uint64_t capacity) const;
 
     uint32_t block_size_ = 0;
-    std::unique_ptr<ComputePipeline> setup_;
-    std::unique_ptr<ComputePipeline> histogram_;        // one sweep: every pass's digit totals
-    std::unique_ptr<ComputePipeline> one_sweep_scatter_;
-    std::unique_ptr<ComputePipeline> block_histogram_;  // large sorts, per pass
-    std::unique_ptr<ComputePipeline> scan_histogram_;
-    std::unique_ptr<ComputePipeline> scatter_;
+    std::unique_ptr<Kernel<shader::sort::RadixSetupKernel>> setup_;
+    std::unique_ptr<Kernel<shader::sort::RadixHistogramKernel>> histogram_;  // one sweep: every pass's digit totals
+    std::unique_ptr<Kernel<shader::sort::RadixScatterOneSweepKernel>> one_sweep_scatter_;
+    std::unique_ptr<Kernel<shader::sort::RadixBlockHistogramKernel>> block_histogram_;  // large sorts, per pass
+    std::unique_ptr<Kernel<shader::sort::RadixScanHistogramKernel>> scan_histogram_;
+    std::unique_ptr<Kernel<shader::sort::RadixScatterKernel>> scatter_;
 };
 
 }  // namespace vksplat::gpu

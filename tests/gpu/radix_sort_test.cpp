@@ -330,8 +330,8 @@ TEST(RadixSort, HostSetupOnlyForOneSweepSorts) {
     ASSERT_TRUE(depth.has_value());
     EXPECT_EQ(depth->passes, 4u);
     for (uint32_t pass = 0; pass < 4; ++pass) EXPECT_EQ(depth->digits[pass], pass * 8 | 8u << 8);
-    EXPECT_NE(depth->totals, 0u);
-    EXPECT_NE(depth->lookback, 0u);
+    EXPECT_NE(depth->totals.value, 0u);
+    EXPECT_NE(depth->lookback.value, 0u);
     EXPECT_EQ(depth->lookback_words, 4u * 256u);  // one block: its words of every pass
     stream.barrier();  // the same scratch is set up again
     const auto tiles = shared_sort().record_host_setup(stream, small_keys, small_values, small, 12, small_scratch);

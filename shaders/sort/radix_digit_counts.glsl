@@ -7,8 +7,8 @@
 //
 // Use: radix_clear_digit_counts(), barrier(), radix_count_digits() per key, then in uniform
 // control flow radix_add_digit_counts() (which starts with the barrier it needs). The including
-// shader enables the subgroup basic, vote and ballot extensions, includes buffers.glsl and
-// radix_lookback.glsl, and includes this after its local_size layout: before it, glslang takes
+// shader enables the subgroup basic, vote and ballot extensions, includes
+// shaders/sort/radix_sort.h, and includes this after its local_size layout: before it, glslang takes
 // gl_WorkGroupSize to be 1 and every invocation would add the whole workgroup's counts.
 #ifndef VKSPLAT_RADIX_DIGIT_COUNTS_GLSL
 #define VKSPLAT_RADIX_DIGIT_COUNTS_GLSL

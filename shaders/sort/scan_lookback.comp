@@ -16,32 +16,20 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_memory_scope_semantics : require
 #extension GL_EXT_buffer_reference_uvec2 : require
-#include "buffers.glsl"
+#include "shaders/sort/prefix_scan.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;
 layout(constant_id = 2) const uint MAX_SUBGROUPS = 32;
 layout(constant_id = 3) const uint SPIN_LIMIT = 64;
 #define WGS_MAX_SUBGROUPS MAX_SUBGROUPS
-#include "workgroup_scan.glsl"
+#include "shaders/common/workgroup_scan.glsl"
 
-const uint LOOKBACK = 16;  // first look-back word in the control words
 const uint AGGREGATE = 1u << 30;
 const uint PREFIX = 2u << 30;
 const uint VALUE_MASK = (1u << 30) - 1u;  // PrefixScan::saturated_sum
 
-// Polled while other workgroups write them: read (relaxed atomic loads) and written only by atomics
-// (plain reads, even volatile ones, were seen on lavapipe to be re-read between uses, mixing a flag
-// with a later value).
-layout(buffer_reference, std430, buffer_reference_align = 4) coherent buffer LookbackWords { uint v[]; };
-
-layout(push_constant) uniform Push {
-    Uints input_values;
-    uvec2 gather;           // device address of uint indices, or 0: element i is input[gather[i]]
-    Uints output_values;
-    LookbackWords control;  // [3] count, [4] blocks, [16 + block] look-back word
-    uvec2 total;            // device address of one uint for the sum of all elements, or 0
-} pc;
+layout(push_constant) uniform Push { ScanLookbackPush pc; };
 
 shared uint tile[gl_WorkGroupSize.x * ITEMS];
 shared uint lookback_sum;   // what the first subgroup's walk added up
@@ -73,7 +61,7 @@ void main() {
         uint block_total;
         const uint exclusive = workgroup_exclusive_add(sum, block_total);
         if (gl_LocalInvocationIndex == 0 && block < blocks)
-            atomicExchange(pc.control.v[LOOKBACK + block], (block == 0 ? PREFIX : AGGREGATE) | min(block_total, VALUE_MASK));
+            atomicExchange(pc.control.v[SCAN_LOOKBACK + block], (block == 0 ? PREFIX : AGGREGATE) | min(block_total, VALUE_MASK));
 
         // Sum of every earlier block: the first subgroup walks back with no barrier, reading one
         // predecessor per lane (one round trip per gl_SubgroupSize blocks) and adding AGGREGATEs
@@ -87,7 +75,7 @@ void main() {
                 uint stalled = 0;
                 while (next > 0 && stalled <= SPIN_LIMIT) {
                     // Before block 0 there is nothing: a PREFIX of 0 ends the walk.
-                    const uint word = lane < next ? atomicLoad(pc.control.v[LOOKBACK + next - 1 - lane], gl_ScopeDevice,
+                    const uint word = lane < next ? atomicLoad(pc.control.v[SCAN_LOOKBACK + next - 1 - lane], gl_ScopeDevice,
                                                                gl_StorageSemanticsBuffer, gl_SemanticsRelaxed) : PREFIX;
                     const uvec4 stops = subgroupBallot(word == 0 || (word & PREFIX) != 0);
                     const uint stop = subgroupBallotBitCount(stops) != 0 ? subgroupBallotFindLSB(stops) : gl_SubgroupSize;
@@ -121,7 +109,7 @@ void main() {
             }
         }
         if (gl_LocalInvocationIndex == 0 && block > 0 && block < blocks)
-            atomicExchange(pc.control.v[LOOKBACK + block], PREFIX | saturated(earlier, block_total));
+            atomicExchange(pc.control.v[SCAN_LOOKBACK + block], PREFIX | saturated(earlier, block_total));
         if (gl_LocalInvocationIndex == 0 && block + 1 >= blocks && (pc.total.x | pc.total.y) != 0)
             Uints(pc.total).v[0] = saturated(earlier, block_total);
 

@@ -9,7 +9,7 @@
 // Works for any subgroup size (subgroups must be full: workgroup size a multiple of it).
 //
 // The including shader defines ITEMS and MAX_SUBGROUPS (specialisation constants), includes
-// radix_lookback.glsl (RADIX_MAX), enables the subgroup basic and ballot extensions, and has push
+// shaders/sort/radix_sort.h (RADIX_MAX), enables the subgroup basic and ballot extensions, and has push
 // constants `pc` with keys_in, values_in, keys_out, values_out (Uints) and shift.
 #ifndef VKSPLAT_RADIX_BLOCK_GLSL
 #define VKSPLAT_RADIX_BLOCK_GLSL

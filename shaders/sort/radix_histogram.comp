@@ -9,21 +9,13 @@
 // output position of each digit. It also clears its blocks' look-back words for every pass (the
 // scatter reads them after the barrier that follows), so they need no clear of their own.
 // Workgroups walk the blocks in a grid-stride loop.
-#include "buffers.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;  // keys per invocation and block
-#include "radix_digit_counts.glsl"
+#include "shaders/sort/radix_digit_counts.glsl"
 
-layout(push_constant) uniform Push {
-    Uints keys;
-    Uints lookback;  // [block][pass][digit]
-    Uints control;   // [3] count, [4] blocks
-    Uints totals;    // [pass][digit]
-    uint digits[MAX_PASSES];  // per pass: first bit | bit count << 8
-    uint passes;
-} pc;
+layout(push_constant) uniform Push { RadixHistogramPush pc; };
 
 void main() {
     const uint count = pc.control.v[3];

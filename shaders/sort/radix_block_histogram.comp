@@ -4,20 +4,12 @@
 // keys, writes hist[digit * blocks + block] and adds them to the pass's per-digit totals (cleared
 // by radix_setup), from which radix_scan_histogram gives every (digit, block) its first output
 // position for radix_scatter. Workgroups walk the blocks in a grid-stride loop.
-#include "buffers.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;  // keys per invocation and block
 
-layout(push_constant) uniform Push {
-    Uints keys;
-    Uints hist;
-    Uints control;
-    Uints totals;  // keys per digit in this pass (cleared by radix_setup)
-    uint shift;  // first bit of the digit
-    uint bits;   // digit width, 0..8 (0: every key has digit 0)
-} pc;
+layout(push_constant) uniform Push { RadixBlockHistogramPush pc; };
 
 shared uint counts[RADIX_MAX];
 

@@ -4,23 +4,16 @@
 // to the scratch capacity, writes the block count and the scan's indirect dispatch size (at
 // least one workgroup, which writes the total of an empty scan) and clears the blocks'
 // look-back words (see prefix_scan.cpp for the layout).
-#include "buffers.glsl"
+#include "shaders/sort/prefix_scan.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Uints count;     // one uint: number of elements
-    Uints control;   // scratch: [0..2] DispatchArgs, [3] count, [4] blocks, [16..] look-back words
-    uint capacity;   // scratch capacity in elements
-    uint block;      // elements per block
-} pc;
-
-const uint LOOKBACK = 16;
+layout(push_constant) uniform Push { ScanSetupPush pc; };
 
 void main() {
     const uint count = min(pc.count.v[0], pc.capacity);
     const uint blocks = (count + pc.block - 1) / pc.block;
-    for (uint b = gl_LocalInvocationIndex; b < blocks; b += gl_WorkGroupSize.x) pc.control.v[LOOKBACK + b] = 0;
+    for (uint b = gl_LocalInvocationIndex; b < blocks; b += gl_WorkGroupSize.x) pc.control.v[SCAN_LOOKBACK + b] = 0;
     if (gl_LocalInvocationIndex != 0) return;
     pc.control.v[0] = clamp(blocks, 1u, MAX_GROUPS_X);
     pc.control.v[1] = 1;

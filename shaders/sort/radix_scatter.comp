@@ -9,29 +9,19 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-#include "buffers.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;          // rows per subgroup = keys per invocation
 layout(constant_id = 2) const uint MAX_SUBGROUPS = 16;  // workgroup size / smallest subgroup size
 #define WGS_MAX_SUBGROUPS MAX_SUBGROUPS
-#include "workgroup_scan.glsl"
+#include "shaders/common/workgroup_scan.glsl"
 
 const uint DIGITS_PER_INVOCATION = (RADIX_MAX + gl_WorkGroupSize.x - 1) / gl_WorkGroupSize.x;
 
-layout(push_constant) uniform Push {
-    Uints keys_in;
-    Uints values_in;
-    Uints keys_out;
-    Uints values_out;
-    Uints hist;     // exclusive-scanned histogram
-    Uints control;
-    uint shift;
-    uint bits;
-} pc;
+layout(push_constant) uniform Push { RadixScatterPush pc; };
 
-#include "radix_block.glsl"
+#include "shaders/sort/radix_block.glsl"
 
 void main() {
     const uint count = pc.control.v[3];

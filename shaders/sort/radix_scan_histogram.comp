@@ -7,20 +7,15 @@
 // summed every digit's total), and its blocks' positions follow by a scan along hist[d][block].
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
-#include "buffers.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;
 layout(constant_id = 2) const uint MAX_SUBGROUPS = 32;
 #define WGS_MAX_SUBGROUPS MAX_SUBGROUPS
-#include "workgroup_scan.glsl"
+#include "shaders/common/workgroup_scan.glsl"
 
-layout(push_constant) uniform Push {
-    Uints hist;     // hist[digit * blocks + block], scanned in place
-    Uints control;  // [4] blocks
-    Uints totals;   // keys per digit in this pass
-    uint bits;
-} pc;
+layout(push_constant) uniform Push { RadixScanHistogramPush pc; };
 
 void main() {
     const uint digit = gl_WorkGroupID.x;

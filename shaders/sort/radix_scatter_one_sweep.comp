@@ -17,8 +17,7 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_memory_scope_semantics : require
-#include "buffers.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x_id = 0) in;
 layout(constant_id = 1) const uint ITEMS = 16;          // rows per subgroup = keys per invocation
@@ -26,30 +25,13 @@ layout(constant_id = 2) const uint MAX_SUBGROUPS = 16;  // workgroup size / smal
 layout(constant_id = 3) const uint SPIN_LIMIT = 64;     // polls of an unpublished predecessor before counting it
 const uint WINDOW = 8;  // predecessors read per look-back round trip
 #define WGS_MAX_SUBGROUPS MAX_SUBGROUPS
-#include "workgroup_scan.glsl"
+#include "shaders/common/workgroup_scan.glsl"
 
 const uint DIGITS_PER_INVOCATION = (RADIX_MAX + gl_WorkGroupSize.x - 1) / gl_WorkGroupSize.x;
 
-// Look-back words are polled while other workgroups write them: read and written only by atomics
-// (plain reads, even volatile ones, were seen on lavapipe to be re-read between uses, mixing one
-// word's flag with a later word's value); the polls are relaxed atomic loads (lego's depth sort on
-// an H100: 0.118 ms, 0.189 with read-modify-write polls).
-layout(buffer_reference, std430, buffer_reference_align = 4) coherent buffer LookbackWords { uint v[]; };
+layout(push_constant) uniform Push { RadixScatterOneSweepPush pc; };
 
-layout(push_constant) uniform Push {
-    Uints keys_in;
-    Uints values_in;
-    Uints keys_out;
-    Uints values_out;
-    LookbackWords lookback;  // [block][pass][digit], cleared by the histogram kernel
-    Uints control;           // [3] count, [4] blocks
-    Uints totals;            // this pass's keys per digit
-    uint pass;
-    uint shift;
-    uint bits;
-} pc;
-
-#include "radix_block.glsl"
+#include "shaders/sort/radix_block.glsl"
 
 // A predecessor's digit counts, when the block has to count them itself.
 shared uint fallback[RADIX_MAX];

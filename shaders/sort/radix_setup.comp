@@ -5,17 +5,11 @@
 // the per-block kernels into the control words (layout in radix_sort.cpp), and clears the
 // per-pass digit totals that the histogram kernel adds to (a kernel instead of a buffer fill so
 // that the clear needs no barrier of its own).
-#include "buffers.glsl"
-#include "radix_lookback.glsl"
+#include "shaders/sort/radix_sort.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Uints count;
-    Uints control;  // [0..2] DispatchArgs, [3] count, [4] blocks, [16..] totals[pass][digit]
-    uint capacity;
-    uint block;     // keys per block
-} pc;
+layout(push_constant) uniform Push { RadixSetupPush pc; };
 
 void main() {
     for (uint i = gl_LocalInvocationIndex; i < MAX_PASSES * RADIX_MAX; i += gl_WorkGroupSize.x)

@@ -1,0 +1,26 @@
+#pragma once
+// Kernel<K>: the pipeline of one generated kernel K (shaders/<module>/<name>.kernel.hpp, made by
+// cmake/EmbedKernel.cmake from the shader): K names its SPIR-V, its push type and its name once,
+// and CommandStream::dispatch takes a Kernel<K> only with a K::Push, so a dispatch with another
+// pass's push does not compile.
+#include <cstdint>
+#include <utility>
+#include <vector>
+
+#include "gpu/compute_pipeline.hpp"
+
+namespace vksplat::gpu {
+
+template <class K>
+class Kernel : public ComputePipeline {
+public:
+    using Push = typename K::Push;
+    // Every Vulkan device holds 128 bytes of push constants; larger pushes would fail on some.
+    static_assert(sizeof(Push) <= 128, "a push block must fit the 128 bytes every device has");
+
+    // specialization: the shader's specialisation constants, ids 0..n-1.
+    explicit Kernel(const Context& context, std::vector<uint32_t> specialization = {})
+        : ComputePipeline(context, K::spirv(), sizeof(Push), std::move(specialization), K::name) {}
+};
+
+}  // namespace vksplat::gpu
