@@ -14,7 +14,7 @@
 #include "render/gpu_scene.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
-#include "vksplat/jobs/benchmark.hpp"
+#include "vksplat/bench/benchmark.hpp"
 
 namespace {
 
@@ -37,7 +37,7 @@ Result measure(const gpu::Context& context, const GaussianCloud& cloud, const Ca
         wall.push_back(std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
         gpu.push_back(renderer.last_frame().gpu_milliseconds);
     }
-    return {jobs::median(wall), jobs::median(gpu), renderer.last_frame()};
+    return {bench::median(wall), bench::median(gpu), renderer.last_frame()};
 }
 
 }  // namespace

@@ -12,7 +12,7 @@
 #include <random>
 
 #include "vksplat/error.hpp"
-#include "vksplat/jobs/benchmark.hpp"
+#include "vksplat/bench/benchmark.hpp"
 
 namespace {
 
@@ -109,10 +109,10 @@ int main(int argc, char** argv) {
             // frame can sort) is a result for the table, not the end of the run.
             try {
                 renderer.set_scene(c.make(count, camera));
-                jobs::BenchmarkOptions options;
+                bench::BenchmarkOptions options;
                 options.repetitions = reps;
                 options.warmup = 2;
-                const auto result = jobs::benchmark_views(renderer, {view}, {0}, options, context.info().name);
+                const auto result = bench::benchmark_views(renderer, {view}, {0}, options, context.info().name);
                 const auto& v = result.views[0];
                 std::printf("%-22s %12.3f %12.3f %10u %12u\n", c.name, v.median_ms, v.min_ms, v.visible,
                             v.tile_entries);

@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
         }
         uint64_t render_bytes = 0;
         const jobs::QualityProbe quality = [&](const GaussianCloud& scene) {
-            prune::Quality q;
+            eval::Quality q;
             renderer.set_scene(scene);
             for (const auto& [v, photo] : test_photos) {
                 const RenderOutput out = renderer.render(cameras[v], settings);

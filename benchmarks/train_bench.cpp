@@ -60,10 +60,10 @@ int main(int argc, char** argv) {
         options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
         RenderSettings settings;
         settings.background = options.background;
-        const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const prune::TestViews& views) {
+        const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {
             Renderer renderer(context);
             renderer.set_scene(scene);
-            prune::Quality quality;
+            eval::Quality quality;
             for (size_t v = 0; v < views.cameras.size(); ++v) {
                 const RenderOutput out = renderer.render(views.cameras[v], settings);
                 quality.psnr.push_back(eval::psnr(out.rgb.data(), views.targets[v].data(), out.width, out.height));

@@ -288,7 +288,7 @@ ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions&
     return result;
 }
 
-ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud& cloud, const prune::TestViews& views,
+ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud& cloud, const eval::TestViews& views,
                                          const prune::QualityBudget& budget, const RenderSettings& settings,
                                          const fs::path& out, const ClusterStageIo& io,
                                          const std::function<void(const prune::BudgetProbe&)>& on_probe) {

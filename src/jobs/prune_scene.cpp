@@ -85,7 +85,7 @@ std::vector<Camera> pick(const std::vector<Camera>& cameras, const std::vector<s
 
 // The keep mask the selector asks for; a quality budget also leaves its probes in `result`.
 prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud, const Scored& scored,
-                       const prune::TestViews& targets, const PruneOptions& options, const PruneProgress& progress) {
+                       const eval::TestViews& targets, const PruneOptions& options, const PruneProgress& progress) {
     if (const auto* threshold = std::get_if<DropAtOrBelow>(&options.selector))
         return prune::select_threshold(scored.scores, threshold->threshold, scored.candidates);
     if (const auto* ratio = std::get_if<DropRatio>(&options.selector))
@@ -115,7 +115,7 @@ PhotoSource recover_photos(const PruneOptions& options) {
 // Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
 // measured; otherwise the selector's count is reached in the rounds asked for.
 GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
-                      const std::vector<Camera>& cameras, const Scored& scored, const prune::TestViews& targets,
+                      const std::vector<Camera>& cameras, const Scored& scored, const eval::TestViews& targets,
                       const PruneOptions& options, const PruneProgress& progress) {
     const RecoverOptions recover = recover_options(options, result);
     const PhotoSource photos = recover_photos(options);
@@ -166,10 +166,10 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     // Photos are read before the long part, so that a missing one is reported at once.
     const std::vector<Camera> test_cameras = pick(cameras, result.test_views);
     result.against_photos = options.images_dir.has_value();
-    const prune::TestViews targets = result.against_photos
-                                         ? prune::photo_targets(test_cameras, *options.images_dir, options.settings.background)
-                                         : prune::render_targets(renderer, cloud, test_cameras, options.settings);
-    if (result.against_photos) result.before = prune::measure_quality(renderer, cloud, targets, options.settings, true);
+    const eval::TestViews targets = result.against_photos
+                                         ? eval::photo_targets(test_cameras, *options.images_dir, options.settings.background)
+                                         : eval::render_targets(renderer, cloud, test_cameras, options.settings);
+    if (result.against_photos) result.before = eval::measure_quality(renderer, cloud, targets, options.settings, true);
 
     const auto start = std::chrono::steady_clock::now();
     const Scored scored = options.load_scores
@@ -194,7 +194,7 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     result.sh_degree_after = pruned.sh_degree;
     result.count_after = pruned.size();
     result.bytes_after = pruned.ply_bytes();
-    result.after = prune::measure_quality(renderer, pruned, targets, options.settings, true);
+    result.after = eval::measure_quality(renderer, pruned, targets, options.settings, true);
     io::write_ply(pruned, options.out, options.mode);
     return result;
 }

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <set>
 
-#include "output_folders.hpp"
+#include "vksplat/io/output_folders.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/cameras.hpp"
@@ -116,7 +116,7 @@ RenderViewsResult render_views(Renderer& renderer, const std::vector<Camera>& ca
         files.push_back(view);
     }
     const fs::path metrics_csv = options.out_dir / "metrics.csv";
-    OutputFolders folders;
+    io::OutputFolders folders;
     folders.create(options.out_dir);
     std::set<fs::path> outputs;
     const auto check = [&](const fs::path& path) {

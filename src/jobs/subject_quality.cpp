@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "vksplat/error.hpp"
-#include "vksplat/eval/comparison_sheet.hpp"
+#include "vksplat/report/comparison_sheet.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/image.hpp"
@@ -66,16 +66,16 @@ std::vector<float> region_panel(const std::vector<float>& rgb, const std::vector
 void write_sheet(const SubjectSheets& sheets, const std::string& stem, const RenderOutput& unpruned,
                  const RenderOutput& pruned, const std::vector<uint8_t>& mask, const std::vector<float>* photo) {
     const int w = pruned.width, h = pruned.height;
-    std::vector<eval::SheetPanel> panels;
+    std::vector<report::SheetPanel> panels;
     if (photo) panels.push_back({"photo", w, h, *photo});
     panels.push_back({"unpruned", w, h, unpruned.rgb});
     panels.push_back({"pruned", w, h, pruned.rgb});
     panels.push_back({"subject region", w, h, region_panel(unpruned.rgb, mask)});
     const std::vector<float>& target = photo ? *photo : unpruned.rgb;
-    panels.push_back(eval::heat_map_panel(pruned.rgb.data(), target.data(), w, h, sheets.max_error,
+    panels.push_back(report::heat_map_panel(pruned.rgb.data(), target.data(), w, h, sheets.max_error,
                                           photo ? "pruned vs photo" : "pruned vs unpruned"));
     std::filesystem::create_directories(sheets.dir);
-    eval::write_comparison_sheet(sheets.dir / (stem + "_subject.png"), panels, sheets.mode);
+    report::write_comparison_sheet(sheets.dir / (stem + "_subject.png"), panels, sheets.mode);
 }
 
 }  // namespace

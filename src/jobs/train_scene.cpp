@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "jobs/fingerprint.hpp"
-#include "jobs/output_folders.hpp"
+#include "vksplat/io/output_folders.hpp"
 #include "jobs/run_checkpoint.hpp"
 #include "vksplat/camera_focus.hpp"
 #include "vksplat/error.hpp"
@@ -188,7 +188,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     // cameras.json), none is replaced unless asked for or resuming, the folder must take files.
     for (const auto& path : {result.ply, result.cameras_json, result.metrics_json, fs::absolute(checkpoint)})
         io::refuse_input_as_output(path, data.inputs);
-    OutputFolders folders;  // removed again if the run is refused before it writes
+    io::OutputFolders folders;  // removed again if the run is refused before it writes
     folders.create(options.out_dir);
     for (const auto& path : {result.ply, result.cameras_json, result.metrics_json})
         io::check_writable(path, options.resume ? io::WriteMode::overwrite : options.mode);
@@ -207,7 +207,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         train_photos.emplace(view, training_photo(photos, camera));
         largest_image = std::max<uint64_t>(largest_image, uint64_t(camera.width) * camera.height);
     }
-    prune::TestViews test;
+    eval::TestViews test;
     test.photos = true;
     for (size_t view : data.test_views) {
         test.cameras.push_back(data.cameras[view]);

@@ -13,7 +13,7 @@ namespace vksplat::prune {
 namespace {
 
 // The drop of a probe as quality_budget.hpp defines it.
-double drop(const Quality& quality, const TestViews& views, double baseline_psnr, double assumed_psnr) {
+double drop(const eval::Quality& quality, const eval::TestViews& views, double baseline_psnr, double assumed_psnr) {
     // Equal means (+infinity on both sides included, which a difference would make NaN) drop nothing.
     if (views.photos) return quality.mean_psnr == baseline_psnr ? 0.0 : baseline_psnr - quality.mean_psnr;
     // d / m0 = 10^((P - psnr) / 10) per view; an identical view (psnr = +inf) adds nothing.
@@ -25,21 +25,22 @@ double drop(const Quality& quality, const TestViews& views, double baseline_psnr
 }  // namespace
 
 BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
-                                const TestViews& views, const QualityBudget& budget, const RenderSettings& settings,
+                                const eval::TestViews& views, const QualityBudget& budget,
+                                const RenderSettings& settings,
                                 const std::function<void(const BudgetProbe&)>& on_probe) {
     if (!(budget.max_psnr_drop >= 0.0))
         throw InputError("--max-psnr-drop " + std::to_string(budget.max_psnr_drop), "must be 0 or more (dB)");
     if (ranking.size() != cloud.size())
         throw std::invalid_argument("prune::fit_quality_budget: the ranking is not of this cloud");
     BudgetResult result;
-    if (views.photos) result.baseline_psnr = measure_quality(renderer, cloud, views, settings, false).mean_psnr;
+    if (views.photos) result.baseline_psnr = eval::measure_quality(renderer, cloud, views, settings, false).mean_psnr;
 
     const auto probe = [&](size_t kept, int sh_degree) {
         const auto start = std::chrono::steady_clock::now();
         GaussianCloud model = cloud.subset(ranking.keep_best(kept));
         if (sh_degree != model.sh_degree) model = model.with_sh_degree(sh_degree);
         if (budget.refit) model = budget.refit(model);
-        const Quality quality = measure_quality(renderer, model, views, settings, false);
+        const eval::Quality quality = eval::measure_quality(renderer, model, views, settings, false);
         BudgetProbe p;
         p.kept = kept;
         p.sh_degree = sh_degree;

@@ -190,7 +190,7 @@ TEST_F(ClusterPrune, AQualityBudgetHoldsOnTheTestViews) {
     jobs::score_stage(cloud, cameras, options, io);
     const std::vector<Camera> test(cameras.begin(), cameras.begin() + 3);
     RenderSettings settings;
-    const prune::TestViews targets = prune::render_targets(renderer, cloud, test, settings);
+    const eval::TestViews targets = eval::render_targets(renderer, cloud, test, settings);
 
     std::vector<size_t> kept;
     for (double budget : {0.05, 1.0}) {
@@ -206,7 +206,7 @@ TEST_F(ClusterPrune, AQualityBudgetHoldsOnTheTestViews) {
         EXPECT_EQ(written.size(), result.count_after);
         EXPECT_EQ(result.budget->kept, result.count_after);
         // Measured again from the file: the same drop (against renders of the unpruned scene).
-        const prune::Quality quality = prune::measure_quality(renderer, written, targets, settings, false);
+        const eval::Quality quality = eval::measure_quality(renderer, written, targets, settings, false);
         if (std::isinf(result.budget->psnr))  // nothing that shows was dropped
             EXPECT_EQ(quality.mean_psnr, result.budget->psnr) << budget;
         else

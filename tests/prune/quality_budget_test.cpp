@@ -53,7 +53,7 @@ void expect_bisection(const prune::BudgetResult& result, size_t candidates, int 
 TEST_F(QualityBudget, AgainstTheUnprunedRenderFindsACountByBisection) {
     const GaussianCloud cloud = random_scene(61, 800, 1);
     Renderer renderer(context());
-    const prune::TestViews views = prune::render_targets(renderer, cloud, cameras(), {});
+    const eval::TestViews views = eval::render_targets(renderer, cloud, cameras(), {});
     EXPECT_FALSE(views.photos);
     const auto scores = prune::score(cloud, {}, prune::ScoreMethod::opacity);
     const prune::Ranking ranking(scores, prune::keep_all(cloud.size()));
@@ -75,7 +75,7 @@ TEST_F(QualityBudget, AgainstTheUnprunedRenderFindsACountByBisection) {
     expect_bisection(result, cloud.size(), 1);
 
     // The drop is the estimate quality_budget.hpp defines, from the PSNR against the unpruned render.
-    const prune::Quality q = prune::measure_quality(renderer, cloud.subset(result.keep), views, {}, false);
+    const eval::Quality q = eval::measure_quality(renderer, cloud.subset(result.keep), views, {}, false);
     double drop = 0;
     for (double psnr : q.psnr) drop += 10 * std::log10(1 + std::pow(10.0, (30.0 - psnr) / 10)) / double(q.psnr.size());
     EXPECT_NEAR(result.drop, drop, 1e-9);
@@ -85,7 +85,7 @@ TEST_F(QualityBudget, AgainstPhotosMeasuresTheDropFromTheUnprunedScene) {
     const GaussianCloud cloud = random_scene(62, 600, 0);
     Renderer renderer(context());
     // "Photos": the renders with a fixed pattern of noise, so the unpruned scene scores about 34 dB.
-    prune::TestViews views = prune::render_targets(renderer, cloud, cameras(), {});
+    eval::TestViews views = eval::render_targets(renderer, cloud, cameras(), {});
     views.photos = true;
     for (auto& target : views.targets)
         for (size_t i = 0; i < target.size(); ++i) target[i] += (i % 7 < 3 ? 0.02f : -0.02f);
@@ -107,7 +107,7 @@ TEST_F(QualityBudget, AgainstPhotosMeasuresTheDropFromTheUnprunedScene) {
 TEST_F(QualityBudget, ShReductionKeepsTheLowestDegreeWithinBudget) {
     Renderer renderer(context());
     const auto test = [&](const GaussianCloud& cloud) {
-        const prune::TestViews views = prune::render_targets(renderer, cloud, cameras(), {});
+        const eval::TestViews views = eval::render_targets(renderer, cloud, cameras(), {});
         const auto scores = prune::score(cloud, {}, prune::ScoreMethod::opacity);
         prune::QualityBudget budget;
         budget.max_psnr_drop = 0.01;
@@ -133,7 +133,7 @@ TEST_F(QualityBudget, ShReductionKeepsTheLowestDegreeWithinBudget) {
 TEST_F(QualityBudget, WhenEvenAllCandidatesMissTheBudgetItSaysSo) {
     const GaussianCloud cloud = random_scene(65, 200, 0);
     Renderer renderer(context());
-    const prune::TestViews views = prune::render_targets(renderer, cloud, cameras(), {});
+    const eval::TestViews views = eval::render_targets(renderer, cloud, cameras(), {});
     const auto scores = prune::score(cloud, {}, prune::ScoreMethod::opacity);
     // Half the scene left as candidates (as if a lossless pass had dropped the rest): far over 0 dB.
     prune::KeepMask half(cloud.size(), 0);

@@ -119,8 +119,8 @@ protected:
         return result;
     }
     jobs::TestMeasure measure() {
-        return [this](const GaussianCloud& scene, const prune::TestViews& views) {
-            return prune::measure_quality(*renderer, scene, views, RenderSettings{}, false);
+        return [this](const GaussianCloud& scene, const eval::TestViews& views) {
+            return eval::measure_quality(*renderer, scene, views, RenderSettings{}, false);
         };
     }
     fs::path dir;

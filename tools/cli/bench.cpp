@@ -8,7 +8,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/npy.hpp"
-#include "vksplat/jobs/bench_report.hpp"
+#include "vksplat/bench/bench_report.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/tiled_scene.hpp"
 
@@ -32,14 +32,14 @@ std::array<int, 2> parse_grid(const std::string& text) {
     return {nx, ny};
 }
 
-void print_view(const jobs::ViewBenchmark& v, const std::optional<jobs::DeviceRates>& rates) {
+void print_view(const bench::ViewBenchmark& v, const std::optional<bench::DeviceRates>& rates) {
     std::printf("view %zu %dx%d: median %.3f ms, min %.3f ms, visible %u, tile entries %u, device memory %.1f MiB%s\n",
                 v.view, v.width, v.height, v.median_ms, v.min_ms, v.visible, v.tile_entries,
                 double(v.device_bytes) / (1 << 20),
                 v.chunks > 1 ? (", " + std::to_string(v.chunks) + " chunks").c_str() : "");
     for (const auto& s : v.stages) std::printf("    %-14s %8.3f ms (min %.3f)\n", s.stage.c_str(), s.median_ms, s.min_ms);
     if (rates) {
-        const jobs::FrameFloor f = jobs::frame_floor(jobs::frame_work(v), *rates);
+        const bench::FrameFloor f = bench::frame_floor(bench::frame_work(v), *rates);
         std::printf("    floor: %.1f MB -> %.3f ms, sorts %.3f ms, total %.3f ms (frame is %.1fx its floor)\n",
                     double(f.bytes) * 1e-6, f.memory_ms, f.sort_ms, f.total_ms(), v.median_ms / f.total_ms());
     }
@@ -60,7 +60,7 @@ int run_bench(const BenchArgs& args) {
     }
     if ((args.width > 0) != (args.height > 0)) throw InputError("bench", "give --width and --height together");
     if (args.width > 0)
-        for (auto& c : cameras) c = jobs::with_resolution(c, args.width, args.height);
+        for (auto& c : cameras) c = bench::with_resolution(c, args.width, args.height);
     const auto views = jobs::parse_view_list(args.views, cameras.size());
 
     gpu::ContextOptions context_options = args.gpu.context_options();
@@ -72,14 +72,14 @@ int run_bench(const BenchArgs& args) {
     Renderer renderer(context);
     const SceneStorage storage{.half_sh = args.half_sh};
     renderer.set_scene(cloud, storage);
-    jobs::BenchmarkOptions options;
+    bench::BenchmarkOptions options;
     options.repetitions = args.reps;
     options.warmup = args.warmup;
     options.settings.background = {args.background[0], args.background[1], args.background[2]};
     options.settings.max_sh_degree = args.sh_degree;
     options.settings.gather_stats = args.stats;
 
-    jobs::BenchReport report;
+    bench::BenchReport report;
     report.device = context.info().name;
     report.driver = context.info().driver;
     report.scene = args.scene + (args.tiled.empty() ? "" : " tiled " + args.tiled);
@@ -90,13 +90,13 @@ int run_bench(const BenchArgs& args) {
                 report.scene.c_str(), size_t(report.gaussians), args.half_sh ? ", half-precision SH" : "",
                 args.stats ? ", with the pruning scores' blend statistics" : "");
     if (args.floor) {
-        report.rates = jobs::measure_device_rates(context);
+        report.rates = bench::measure_device_rates(context);
         std::printf("measured: copy %.0f GB/s (read + write), radix sort %.2f G pairs/s (32-bit keys), "
                     "dependent dispatch %.2f us\n",
                     report.rates->copy_bytes_per_ms * 1e-6, report.rates->sort_pairs_per_ms * 1e-6,
                     report.rates->dependent_dispatch_ms * 1e3);
     }
-    report.views = jobs::benchmark_views(renderer, cameras, views, options, report.device);
+    report.views = bench::benchmark_views(renderer, cameras, views, options, report.device);
     for (const auto& v : report.views.views) print_view(v, report.rates);
     std::printf("mean of per-view medians: %.3f ms over %zu views\n", report.views.mean_of_medians_ms,
                 report.views.views.size());
@@ -115,12 +115,12 @@ int run_bench(const BenchArgs& args) {
     }
     if (args.scaling) {
         const Camera& first = cameras[views.front()];
-        report.by_resolution = jobs::benchmark_resolutions(
+        report.by_resolution = bench::benchmark_resolutions(
             renderer, first, {{256, 256}, {512, 512}, {800, 800}, {1280, 720}, {1920, 1080}, {2560, 1440}, {3840, 2160}},
             options);
         // Scene sizes on the tiled benchmark camera, from a thinned scene to 7 x 7 copies.
         const uint64_t n = base.size();
-        report.by_scene_size = jobs::benchmark_scene_sizes(
+        report.by_scene_size = bench::benchmark_scene_sizes(
             renderer, base, {10'000, 30'000, 100'000, n, 4 * n, 9 * n, 16 * n, 25 * n, 49 * n},
             kTiledBenchmarkSpacing, tiled_benchmark_camera(), options, storage);
         for (const auto* list : {&report.by_resolution, &report.by_scene_size})
@@ -135,9 +135,9 @@ int run_bench(const BenchArgs& args) {
         for (const auto& [name, value] : p.values) std::printf(" %s = %s;", name.c_str(), value.c_str());
         std::printf("\n");
     }
-    if (!args.json.empty()) jobs::write_bench_json(args.json, report, mode);
+    if (!args.json.empty()) bench::write_bench_json(args.json, report, mode);
     if (!args.charts.empty())
-        for (const auto& path : jobs::write_scaling_charts(args.charts, report, mode))
+        for (const auto& path : bench::write_scaling_charts(args.charts, report, mode))
             std::printf("wrote %s\n", path.string().c_str());
     return 0;
 }

@@ -187,9 +187,9 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                 result = jobs::prune_stage(cloud, options, args.out, io);
                 return;
             }
-            const prune::TestViews targets =
-                args.images.empty() ? prune::render_targets(*renderer, cloud, test, options.settings)
-                                    : prune::photo_targets(test, args.images, options.settings.background);
+            const eval::TestViews targets =
+                args.images.empty() ? eval::render_targets(*renderer, cloud, test, options.settings)
+                                    : eval::photo_targets(test, args.images, options.settings.background);
             const prune::QualityBudget budget{.max_psnr_drop = *args.max_psnr_drop};
             result = jobs::prune_stage_to_budget(*renderer, cloud, targets, budget, options.settings, args.out, io,
                                                  [](const prune::BudgetProbe& p) {

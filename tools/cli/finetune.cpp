@@ -66,9 +66,9 @@ int run_finetune(const FinetuneArgs& args) {
     RenderSettings settings;
     settings.background = options.train.background;
     const auto photos = jobs::photos_in_folder(args.images, options.train.background);
-    const prune::TestViews views = prune::photo_targets(test_cameras, args.images, options.train.background);
+    const eval::TestViews views = eval::photo_targets(test_cameras, args.images, options.train.background);
     const jobs::QualityProbe quality = [&](const GaussianCloud& scene) {
-        return prune::measure_quality(renderer, scene, views, settings, true);
+        return eval::measure_quality(renderer, scene, views, settings, true);
     };
 
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;

@@ -8,7 +8,7 @@
 #include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/cameras.hpp"
-#include "vksplat/jobs/sweep.hpp"
+#include "vksplat/sweep/sweep.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
 namespace vksplat::cli {
@@ -30,10 +30,10 @@ struct SweepArgs {
     ClusterStageArgs cluster;  // the cluster method's stages 1-6
 };
 
-void print_row(const jobs::SweepRow& row) {
+void print_row(const sweep::SweepRow& row) {
     std::printf("%-12s drop %-5s  %9zu Gaussians %8.2f MB  PSNR %7.3f (%+.3f) dB  SSIM %.4f  vs unpruned %6.2f dB  "
                 "%8.2f ms\n",
-                row.method.c_str(), jobs::fraction_label(row.fraction).c_str(),
+                row.method.c_str(), sweep::fraction_label(row.fraction).c_str(),
                 row.measure.gaussians, double(row.measure.bytes) / 1e6, row.measure.psnr, row.delta_psnr,
                 row.measure.ssim, row.measure.psnr_vs_unpruned, row.measure.ms_per_frame);
     std::fflush(stdout);  // one line per row as it happens, also when stdout is a pipe
@@ -45,15 +45,15 @@ int run_sweep(const SweepArgs& args) {
     const auto cameras = io::read_cameras(args.cameras, &warnings);
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
-    jobs::SweepOptions options;
+    sweep::SweepOptions options;
     // No --methods: every per-Gaussian method and cluster pruning.
     std::vector<std::string> methods = args.methods;
     if (methods.empty()) {
         methods = prune::score_method_names();
-        methods.push_back(jobs::kClusterMethod);
+        methods.push_back(sweep::kClusterMethod);
     }
     for (const auto& name : methods) {
-        if (name == jobs::kClusterMethod)
+        if (name == sweep::kClusterMethod)
             options.cluster = true;
         else
             options.methods.push_back(prune::parse_score_method(name));
@@ -87,7 +87,7 @@ int run_sweep(const SweepArgs& args) {
     // One progress line per stage, started when the stage first reports.
     std::unique_ptr<ProgressLine> line;
     std::string stage;
-    jobs::SweepProgress progress;
+    sweep::SweepProgress progress;
     ChunkReport chunks;
     progress.step = [&](const std::string& name, size_t done, size_t total) {
         chunks.saw(renderer.last_frame().chunks);
@@ -95,7 +95,7 @@ int run_sweep(const SweepArgs& args) {
         line->update(done, total);
     };
     progress.row = print_row;
-    const jobs::SweepResult result = jobs::sweep_scene(renderer, cloud, cameras, options, progress);
+    const sweep::SweepResult result = sweep::sweep_scene(renderer, cloud, cameras, options, progress);
     chunks.print(context);
 
     std::printf("unpruned: PSNR %.3f dB, SSIM %.4f, %.2f ms per frame, %.2f MB\n", result.unpruned.psnr,
@@ -131,7 +131,7 @@ void register_sweep(CLI::App& app, Action& action) {
         ->check(CLI::ExistingDirectory);
     command->add_option("-o,--out", args->out, "folder for the results")->required();
     std::vector<std::string> method_names = prune::score_method_names();
-    method_names.push_back(jobs::kClusterMethod);
+    method_names.push_back(sweep::kClusterMethod);
     command->add_option("--methods", args->methods,
                         "methods to sweep (default: all); cluster is cluster pruning at its default settings, "
                         "ranked at the same kept counts")

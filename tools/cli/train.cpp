@@ -47,8 +47,8 @@ int run_train(const TrainArgs& args) {
     Renderer renderer(context);
     RenderSettings settings;
     settings.background = options.background;
-    const auto measure = [&](const GaussianCloud& scene, const prune::TestViews& views) {
-        return prune::measure_quality(renderer, scene, views, settings, true);
+    const auto measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {
+        return eval::measure_quality(renderer, scene, views, settings, true);
     };
     std::fprintf(stderr, "training from %s (%s: %zu training, %zu test views, %zu starting Gaussians) on %s\n",
                  args.data.c_str(), data.format.c_str(), data.train_views.size(), data.test_views.size(),

@@ -59,7 +59,7 @@ ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions&
 // `views` drops at most budget.max_psnr_drop (a bisection, prune/quality_budget.hpp), so the drop
 // is guaranteed on those views whatever the cluster scores are worth. Writes it to `out`.
 ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud& cloud,
-                                         const prune::TestViews& views, const prune::QualityBudget& budget,
+                                         const eval::TestViews& views, const prune::QualityBudget& budget,
                                          const RenderSettings& settings, const std::filesystem::path& out,
                                          const ClusterStageIo& io,
                                          const std::function<void(const prune::BudgetProbe&)>& on_probe = {});

@@ -18,7 +18,7 @@
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/write_mode.hpp"
-#include "vksplat/prune/quality.hpp"
+#include "vksplat/eval/quality.hpp"
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/train/trainer.hpp"
 
@@ -46,8 +46,8 @@ train::Photo training_photo(const PhotoSource& photos, const Camera& camera, con
 // the view's camera, 0 where the pixel is left out.
 using LossMasks = std::function<std::vector<uint8_t>(size_t view)>;
 
-// The quality of a scene on the held-out views (prune::measure_quality against the photos, say).
-using QualityProbe = std::function<prune::Quality(const GaussianCloud&)>;
+// The quality of a scene on the held-out views (eval::measure_quality against the photos, say).
+using QualityProbe = std::function<eval::Quality(const GaussianCloud&)>;
 
 struct FinetuneOptions {
     uint64_t iterations = 5000;
@@ -95,7 +95,7 @@ struct FinetuneStatus {
 struct FinetuneResult {
     GaussianCloud cloud;                 // the re-fitted scene (sanitised input, Gaussians as given)
     SanitizeReport sanitize;
-    std::optional<prune::Quality> before, after;  // on the test views, when a probe was given
+    std::optional<eval::Quality> before, after;  // on the test views, when a probe was given
     uint64_t iterations = 0;             // steps taken in all, a resumed run's earlier ones included
     uint64_t skipped = 0;                // of which skipped for non-finite gradients
     bool interrupted = false;            // `stop` was raised: the checkpoint holds the state, no output

@@ -15,7 +15,7 @@
 #include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/prune/accumulate.hpp"
-#include "vksplat/prune/quality.hpp"
+#include "vksplat/eval/quality.hpp"
 #include "vksplat/prune/quality_budget.hpp"
 #include "vksplat/prune/scores.hpp"
 #include "vksplat/render/renderer.hpp"
@@ -72,8 +72,8 @@ struct PruneResult {
     bool against_photos = false;
     // On the test views. Before: the input against the photos (only with photos). After: the pruned
     // scene against the photos, else against the renders of the input.
-    std::optional<prune::Quality> before;
-    prune::Quality after;
+    std::optional<eval::Quality> before;
+    eval::Quality after;
     std::optional<prune::BudgetResult> budget;  // with a QualityBudget selector: every probe
     std::vector<size_t> recover_rounds;         // with recover and no budget: Gaussians kept in each round
 };

@@ -92,13 +92,13 @@ struct TrainResult {
     double densify_seconds = 0;         // of which densification and opacity resets
     double gpu_ms_per_iteration = 0;
     uint64_t peak_device_bytes = 0;
-    prune::Quality test;                // on the test views against the photos
+    eval::Quality test;                // on the test views against the photos
     double scene_extent = 0;
     std::filesystem::path ply, cameras_json, metrics_json;
 };
 
-// A scene's quality on the test views (prune::measure_quality, say).
-using TestMeasure = std::function<prune::Quality(const GaussianCloud&, const prune::TestViews&)>;
+// A scene's quality on the test views (eval::measure_quality, say).
+using TestMeasure = std::function<eval::Quality(const GaussianCloud&, const eval::TestViews&)>;
 
 // Trains from `data` (load_training_data), the photos read through `photos` (at the cameras'
 // size), and writes the outputs into options.out_dir. Refuses before the first step: outputs that

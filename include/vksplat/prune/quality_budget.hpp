@@ -16,7 +16,7 @@
 #include <optional>
 #include <vector>
 
-#include "vksplat/prune/quality.hpp"
+#include "vksplat/eval/quality.hpp"
 #include "vksplat/prune/selection.hpp"
 
 namespace vksplat::prune {
@@ -60,7 +60,8 @@ struct BudgetResult {
 // made of cloud.subset(ranking.keep_best(K)) at the cloud's SH degree (and lower ones, when
 // allowed); `on_probe` hears of each as it finishes. Throws InputError for a negative or NaN budget.
 BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
-                                const TestViews& views, const QualityBudget& budget, const RenderSettings& settings,
+                                const eval::TestViews& views, const QualityBudget& budget,
+                                const RenderSettings& settings,
                                 const std::function<void(const BudgetProbe&)>& on_probe = {});
 
 }  // namespace vksplat::prune

@@ -1,0 +1,40 @@
+#pragma once
+// The pieces of the sweep job (sweep.cpp), one file each: measuring a model, the CSV files, the
+// charts and the report.
+#include <filesystem>
+#include <vector>
+
+#include "vksplat/report/html_report.hpp"
+#include "vksplat/sweep/sweep.hpp"
+
+namespace vksplat::sweep::detail {
+
+// The test views with the two pictures every render is compared with.
+struct Targets {
+    std::vector<Camera> cameras;
+    std::vector<std::vector<float>> photos;    // RGB per camera
+    std::vector<std::vector<float>> unpruned;  // the unpruned scene's renders
+};
+
+// Uploads `cloud`, renders each test view once and compares it with both targets, then times it
+// as options.timing_* say (sweep_measure.cpp).
+ModelMeasure measure_model(Renderer& renderer, const GaussianCloud& cloud, const Targets& targets,
+                           const SweepOptions& options);
+
+// sweep.csv: one row per (method, fraction); sh_degrees.csv: one row per (test view, SH degree)
+// and a mean row per degree (sweep_csv.cpp).
+void write_sweep_csv(const std::filesystem::path& path, const SweepResult& result, io::WriteMode mode);
+void write_sh_csv(const std::filesystem::path& path, const SweepResult& result, io::WriteMode mode);
+
+// The charts under out_dir/charts, as the report shows them (sweep_charts.cpp).
+struct SweepCharts {
+    std::vector<report::ReportImage> sweep;  // against the dropped fraction, the time and the size
+    report::ReportImage sh;                  // per-view PSNR across SH degrees
+};
+SweepCharts write_sweep_charts(const std::filesystem::path& out_dir, const SweepResult& result, io::WriteMode mode);
+
+// report.html in out_dir (sweep_report.cpp).
+void write_sweep_report(const std::filesystem::path& path, const SweepResult& result, const SweepOptions& options,
+                        const SweepCharts& charts, io::WriteMode mode);
+
+}  // namespace vksplat::sweep::detail
