@@ -7,7 +7,7 @@
 // nothing: the host counts it as skipped.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;

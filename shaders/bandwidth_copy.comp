@@ -4,7 +4,7 @@
 // bytes through shader cores too, and some drivers run buffer copies on a slower copy engine.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 
 layout(local_size_x = 256) in;
 

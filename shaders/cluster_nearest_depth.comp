@@ -5,7 +5,7 @@
 // order). The buffer starts at 0xffffffff (no centre).
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 
 layout(local_size_x = 256) in;
 

@@ -8,7 +8,7 @@
 //      least min_weight (w of `centres` holds that weight in this mode).
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 
 layout(local_size_x = 256) in;
 

@@ -8,7 +8,7 @@
 // rotations, opacities and the densification sums); the bulk of the state never leaves the device.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;

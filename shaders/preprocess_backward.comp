@@ -10,10 +10,10 @@
 // STEP_NONFINITE in the step status, and Adam then skips the whole step.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
-#include "constants.glsl"
-#include "frame.glsl"
-#include "sh.glsl"
+#include "shaders/common/buffers.h"
+#include "vksplat/constants.hpp"
+#include "shaders/render/frame.h"
+#include "shaders/render/sh.glsl"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;

@@ -3,7 +3,7 @@
 // and the opacity's Adam moments to zero (replace_tensor_to_optimizer), on the device.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;

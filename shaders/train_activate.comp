@@ -5,7 +5,7 @@
 // renders the same through either path. preprocess_backward.comp differentiates them.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;

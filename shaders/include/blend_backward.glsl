@@ -23,16 +23,16 @@
 #extension GL_EXT_shader_atomic_float : require
 #endif
 
-#include "buffers.glsl"
-#include "constants.glsl"
-#include "footprint.glsl"
-#include "frame.glsl"
-#include "tile_blocks.glsl"
+#include "shaders/common/buffers.h"
+#include "vksplat/constants.hpp"
+#include "shaders/render/footprint.h"
+#include "shaders/render/frame.h"
+#include "shaders/render/tile_blocks.glsl"
 #include "train_layout.glsl"
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;
-#include "block_hit_lists.glsl"
+#include "shaders/render/block_hit_lists.glsl"
 
 layout(push_constant) uniform Push {
     CameraBuffer camera;

@@ -10,7 +10,7 @@
 #ifndef VKSPLAT_LOSS_WINDOW_GLSL
 #define VKSPLAT_LOSS_WINDOW_GLSL
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
 
 const uint TILE = 16;                      // pixels per tile side = workgroup side
 const int RADIUS = 5;                      // window 11 x 11

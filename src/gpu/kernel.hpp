@@ -23,4 +23,11 @@ public:
         : ComputePipeline(context, K::spirv(), sizeof(Push), std::move(specialization), K::name) {}
 };
 
+// Workgroups for a grid-stride loop over `count` elements, per_group per group, at most 65535
+// groups (MAX_GROUPS_X of shaders/common/buffers.h).
+inline uint32_t groups_for(uint32_t count, uint32_t per_group = 256) {
+    const uint64_t groups = (static_cast<uint64_t>(count) + per_group - 1) / per_group;
+    return static_cast<uint32_t>(groups < 65535 ? groups : 65535);
+}
+
 }  // namespace vksplat::gpu

@@ -23,7 +23,7 @@ CameraParams make_camera_params(const Camera& camera, const RenderSettings& sett
     // that sees every background.
     settings.validate();
     CameraParams p{};
-    float* rows[3] = {p.view_row0, p.view_row1, p.view_row2};
+    float* rows[3] = {p.view_row0.v, p.view_row1.v, p.view_row2.v};
     for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) rows[r][c] = static_cast<float>(camera.rotation[c][r]);
         rows[r][3] = static_cast<float>(camera.translation[r]);

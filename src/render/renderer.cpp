@@ -8,21 +8,20 @@
 #include <stdexcept>
 
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 #include "gpu/context_impl.hpp"
 #include "gpu/prefix_scan.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
-#include "render/passes.hpp"
 #include "render/scene_chunks.hpp"
 #include "render/target_copy.hpp"
 #include "render/tile_binning.hpp"
-#include "shaders/blend.spv.h"
-#include "shaders/blend_carry.spv.h"
-#include "shaders/blend_stats_carry.spv.h"
-#include "shaders/blend_stats.spv.h"
-#include "shaders/pack_rgba8.spv.h"
+#include "shaders/render/blend.kernel.hpp"
+#include "shaders/render/blend_carry.kernel.hpp"
+#include "shaders/render/blend_stats.kernel.hpp"
+#include "shaders/render/blend_stats_carry.kernel.hpp"
+#include "shaders/render/pack_rgba8.kernel.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat {
@@ -62,11 +61,14 @@ void check_frame_fits(const Camera& camera, uint64_t least, uint64_t image, uint
 struct Renderer::Impl {
     const gpu::Context& context;
     render::TileBinning binning;
-    gpu::ComputePipeline blend;
+    // The blend variants (shaders/render/blend.h) and the 8-bit packing (shaders/render/pack_rgba8.h).
+    gpu::Kernel<shader::render::BlendKernel> blend;
     gpu::CommandStream stream;
-    std::unique_ptr<gpu::ComputePipeline> blend_stats;  // built on first use
-    std::unique_ptr<gpu::ComputePipeline> pack_rgba8;   // built on the first record() to an 8-bit target
-    std::unique_ptr<gpu::ComputePipeline> blend_carry, blend_stats_carry;  // built on first use (chunked frames)
+    std::unique_ptr<gpu::Kernel<shader::render::BlendStatsKernel>> blend_stats;  // built on first use
+    std::unique_ptr<gpu::Kernel<shader::render::PackRgba8Kernel>> pack_rgba8;  // built on the first record() to an 8-bit target
+    // Built on first use (chunked frames).
+    std::unique_ptr<gpu::Kernel<shader::render::BlendCarryKernel>> blend_carry;
+    std::unique_ptr<gpu::Kernel<shader::render::BlendStatsCarryKernel>> blend_stats_carry;
     bool recorded = false;                               // record() was called: frames may be in flight
     render::GpuScene scene;  // params and sh are empty while the scene lives on the host only (chunked frames)
     // Device memory the renderer may hold (SceneStorage::memory_budget, else the context's).
@@ -85,7 +87,7 @@ struct Renderer::Impl {
     explicit Impl(const gpu::Context& c)
         : context(c),
           binning(c),
-          blend(c, gpu::spirv_words(blend_spv), sizeof(render::BlendPush), {}, "blend"),
+          blend(c),
           stream(c),
           frame(c) {}
 
@@ -95,7 +97,7 @@ struct Renderer::Impl {
                        bool gather_stats);
     void record_tiles(gpu::CommandStream& stream, const render::CameraParams& params, const render::GpuScene& source,
                       bool gather_stats);
-    // With carry_flags (blend_body.glsl's CARRY_ flags) the blend continues from, and except for
+    // With carry_flags (shaders/render/blend.h's CARRY_ flags) the blend continues from, and except for
     // the last chunk stores, the carried pixel state.
     void record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y, bool gather_stats,
                            const uint32_t* carry_flags = nullptr);
@@ -108,7 +110,7 @@ struct Renderer::Impl {
     void copy_image_to_readback(gpu::CommandStream& stream, uint32_t pixels);
     void record_into(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                      const RenderTarget& target);
-    const gpu::ComputePipeline& pack_pipeline();
+    const gpu::Kernel<shader::render::PackRgba8Kernel>& pack_kernel();
     // Waits for the frames recorded into the application's command buffers, before a buffer they
     // use is freed. Nothing to wait for if record() was never called.
     void wait_for_recorded_frames() const;
@@ -122,9 +124,10 @@ struct Renderer::Impl {
     uint64_t projected_frame_bytes(uint32_t gaussians, uint32_t entries, uint32_t pixels, uint32_t tiles, bool carry,
                                    bool gather_stats) const;
     uint64_t scene_device_bytes() const;
-    const gpu::ComputePipeline& carry_pipeline(bool gather_stats);
+    const gpu::Kernel<shader::render::BlendCarryKernel>& carry_kernel();
+    const gpu::Kernel<shader::render::BlendStatsCarryKernel>& stats_carry_kernel();
     void add_stage_times();
-    const gpu::ComputePipeline& stats_pipeline();
+    const gpu::Kernel<shader::render::BlendStatsKernel>& stats_kernel();
     std::vector<uint32_t> stats_specialization() const;
     // Per-Gaussian statistics of `count` Gaussians to the readback, and from there into `out`
     // (indexed like the input cloud), Gaussian i of the frame being the scene's uploaded[i]
@@ -140,13 +143,12 @@ std::vector<uint32_t> Renderer::Impl::stats_specialization() const {
     return {context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU ? 0u : 1u};
 }
 
-const gpu::ComputePipeline& Renderer::Impl::stats_pipeline() {
+const gpu::Kernel<shader::render::BlendStatsKernel>& Renderer::Impl::stats_kernel() {
     if (!blend_stats) {
         if (!context.info().int64_atomics)
             throw GpuError("per-Gaussian statistics need 64-bit buffer atomics, which " + context.info().name +
                            " does not offer");
-        blend_stats = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_stats_spv), sizeof(render::BlendStatsPush),
-                                                             stats_specialization(), "blend_stats");
+        blend_stats = std::make_unique<gpu::Kernel<shader::render::BlendStatsKernel>>(context, stats_specialization());
     }
     return *blend_stats;
 }
@@ -171,23 +173,65 @@ void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::Came
 
 void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y,
                                        bool gather_stats, const uint32_t* carry_flags) {
-    using namespace render;
     auto& f = frame;
-    const BlendPush blend_push{f.camera.address(),      f.ranges.address(), f.tile_values.address(),
-                               f.footprints.address(),  f.colors.address(), f.color_alpha.address(),
-                               f.depth.address(),       f.contributors.address()};
-    const BlendStatsPush stats_push{blend_push, f.stat_weight.address(), f.stat_max_weight.address(),
-                                    f.stat_pixels.address(), f.stat_centre_weight.address()};
-    if (carry_flags) {
-        const CarryPush carry{f.carried_color.address(), f.carried_depth_count.address(), *carry_flags};
-        if (gather_stats)
-            record_blend_stats_carry(stream, carry_pipeline(true), {stats_push, carry}, tiles_x, tiles_y);
-        else
-            record_blend_carry(stream, carry_pipeline(false), {blend_push, carry}, tiles_x, tiles_y);
+    // Every variant's push starts with the plain blend's members (shaders/render/blend_push.h).
+    const shader::render::BlendPush plain{.camera = f.camera.address(),
+                                          .ranges = f.ranges.address(),
+                                          .tile_values = f.tile_values.address(),
+                                          .footprints = f.footprints.address(),
+                                          .colors = f.colors.address(),
+                                          .out_color_alpha = f.color_alpha.address(),
+                                          .out_depth = f.depth.address(),
+                                          .out_contributors = f.contributors.address()};
+    if (carry_flags && gather_stats) {
+        stream.dispatch(stats_carry_kernel(),
+                        {.camera = plain.camera,
+                         .ranges = plain.ranges,
+                         .tile_values = plain.tile_values,
+                         .footprints = plain.footprints,
+                         .colors = plain.colors,
+                         .out_color_alpha = plain.out_color_alpha,
+                         .out_depth = plain.out_depth,
+                         .out_contributors = plain.out_contributors,
+                         .stat_weight = f.stat_weight.address(),
+                         .stat_max_weight = f.stat_max_weight.address(),
+                         .stat_pixels = f.stat_pixels.address(),
+                         .stat_centre_weight = f.stat_centre_weight.address(),
+                         .carried_color = f.carried_color.address(),
+                         .carried_depth_count = f.carried_depth_count.address(),
+                         .carry_flags = *carry_flags},
+                        tiles_x, tiles_y);
+    } else if (carry_flags) {
+        stream.dispatch(carry_kernel(),
+                        {.camera = plain.camera,
+                         .ranges = plain.ranges,
+                         .tile_values = plain.tile_values,
+                         .footprints = plain.footprints,
+                         .colors = plain.colors,
+                         .out_color_alpha = plain.out_color_alpha,
+                         .out_depth = plain.out_depth,
+                         .out_contributors = plain.out_contributors,
+                         .carried_color = f.carried_color.address(),
+                         .carried_depth_count = f.carried_depth_count.address(),
+                         .carry_flags = *carry_flags},
+                        tiles_x, tiles_y);
     } else if (gather_stats) {
-        record_blend_stats(stream, *blend_stats, stats_push, tiles_x, tiles_y);
+        stream.dispatch(*blend_stats,
+                        {.camera = plain.camera,
+                         .ranges = plain.ranges,
+                         .tile_values = plain.tile_values,
+                         .footprints = plain.footprints,
+                         .colors = plain.colors,
+                         .out_color_alpha = plain.out_color_alpha,
+                         .out_depth = plain.out_depth,
+                         .out_contributors = plain.out_contributors,
+                         .stat_weight = f.stat_weight.address(),
+                         .stat_max_weight = f.stat_max_weight.address(),
+                         .stat_pixels = f.stat_pixels.address(),
+                         .stat_centre_weight = f.stat_centre_weight.address()},
+                        tiles_x, tiles_y);
     } else
-        record_blend(stream, blend, blend_push, tiles_x, tiles_y);
+        stream.dispatch(blend, plain, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
 }
@@ -229,19 +273,16 @@ uint64_t Renderer::Impl::projected_frame_bytes(uint32_t gaussians, uint32_t entr
            stats_count * render::FrameResources::kStatsBytesPerGaussian + f.packed.size();
 }
 
-const gpu::ComputePipeline& Renderer::Impl::carry_pipeline(bool gather_stats) {
-    if (gather_stats) {
-        stats_pipeline();  // the same device check
-        if (!blend_stats_carry)
-            blend_stats_carry = std::make_unique<gpu::ComputePipeline>(
-                context, gpu::spirv_words(blend_stats_carry_spv), sizeof(render::BlendStatsCarryPush),
-                stats_specialization(), "blend_stats_carry");
-        return *blend_stats_carry;
-    }
-    if (!blend_carry)
-        blend_carry = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(blend_carry_spv),
-                                                             sizeof(render::BlendCarryPush), std::vector<uint32_t>{},
-                                                             "blend_carry");
+const gpu::Kernel<shader::render::BlendStatsCarryKernel>& Renderer::Impl::stats_carry_kernel() {
+    stats_kernel();  // the same device check
+    if (!blend_stats_carry)
+        blend_stats_carry =
+            std::make_unique<gpu::Kernel<shader::render::BlendStatsCarryKernel>>(context, stats_specialization());
+    return *blend_stats_carry;
+}
+
+const gpu::Kernel<shader::render::BlendCarryKernel>& Renderer::Impl::carry_kernel() {
+    if (!blend_carry) blend_carry = std::make_unique<gpu::Kernel<shader::render::BlendCarryKernel>>(context);
     return *blend_carry;
 }
 
@@ -287,7 +328,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     frame.ensure_image(pixels, tiles);
     if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
     if (settings.gather_stats) {
-        stats_pipeline();
+        stats_kernel();
         frame.ensure_stats(scene.count);
     }
 
@@ -331,7 +372,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     const int degree = scene.sh_degree;
     const bool half = scene.half_sh;
     const bool with_stats = settings.gather_stats;
-    if (with_stats) carry_pipeline(true);  // fails early on a device without 64-bit atomics
+    if (with_stats) stats_carry_kernel();  // fails early on a device without 64-bit atomics
 
     // Device bytes for a chunk of g Gaussians with e tile entries, from fresh buffers.
     const auto need = [&](uint32_t g, uint32_t e) {
@@ -438,7 +479,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         }
 
         const bool last = pending.empty();
-        const uint32_t flags = (drawn > 0 ? render::kCarryLoad : 0u) | (last ? render::kCarryLast : 0u);
+        const uint32_t flags = (drawn > 0 ? shader::render::CARRY_LOAD : 0u) | (last ? shader::render::CARRY_LAST : 0u);
         stream.begin();
         record_blend_pass(stream, params.size[2], params.size[3], with_stats, &flags);
         if (with_stats) copy_stats(stream, count);
@@ -455,10 +496,8 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     stats.device_bytes = frame.device_bytes() + stats.scene_bytes;
 }
 
-const gpu::ComputePipeline& Renderer::Impl::pack_pipeline() {
-    if (!pack_rgba8)
-        pack_rgba8 = std::make_unique<gpu::ComputePipeline>(context, gpu::spirv_words(pack_rgba8_spv), sizeof(render::PackRgba8Push),
-                                                            std::vector<uint32_t>{}, "pack_rgba8");
+const gpu::Kernel<shader::render::PackRgba8Kernel>& Renderer::Impl::pack_kernel() {
+    if (!pack_rgba8) pack_rgba8 = std::make_unique<gpu::Kernel<shader::render::PackRgba8Kernel>>(context);
     return *pack_rgba8;
 }
 
@@ -513,8 +552,12 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
     const gpu::Buffer* source = &frame.color_alpha;
     if (packs) {
         const bool bgra = target.format == VK_FORMAT_B8G8R8A8_UNORM || target.format == VK_FORMAT_B8G8R8A8_SRGB;
-        render::record_pack_rgba8(out, pack_pipeline(),
-                                  {frame.color_alpha.address(), frame.packed.address(), pixels, bgra ? 1u : 0u});
+        out.dispatch(pack_kernel(),
+                     {.color_alpha = frame.color_alpha.address(),
+                      .packed = frame.packed.address(),
+                      .pixels = pixels,
+                      .bgra = bgra ? 1u : 0u},
+                     gpu::groups_for(pixels));
         out.barrier();
         source = &frame.packed;
     }

@@ -9,7 +9,7 @@
 namespace vksplat::render {
 
 std::vector<uint32_t> depth_order(const HostScene& host, const CameraParams& params) {
-    const float* row = params.view_row2;
+    const float* row = params.view_row2.v;
     const float near_cut = static_cast<float>(constants::kNearPlane) * 0.5f;
     std::vector<uint64_t> keys;
     keys.reserve(host.count);

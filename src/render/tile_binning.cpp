@@ -3,15 +3,16 @@
 #include <bit>
 #include <string>
 
-#include "render/passes.hpp"
-#include "shaders/clear_words.spv.h"
-#include "shaders/emit_tile_entries.spv.h"
-#include "shaders/indirect_args.spv.h"
-#include "shaders/preprocess.spv.h"
-#include "shaders/tile_ranges.spv.h"
+#include "shaders/render/clear_words.kernel.hpp"
+#include "shaders/render/emit_tile_entries.kernel.hpp"
+#include "shaders/render/indirect_args.kernel.hpp"
+#include "shaders/render/preprocess.kernel.hpp"
+#include "shaders/render/tile_ranges.kernel.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::render {
+
+using namespace shader::render;
 
 uint32_t tile_key_bits(uint32_t tiles) { return static_cast<uint32_t>(std::bit_width(tiles)); }
 
@@ -23,20 +24,21 @@ void check_entries_sortable(uint32_t needed) {
 }
 
 TileBinning::TileBinning(const gpu::Context& c)
-    : clear_words_(c, gpu::spirv_words(clear_words_spv), sizeof(ClearWordsPush), {}, "clear_words"),
-      preprocess_(c, gpu::spirv_words(preprocess_spv), sizeof(PreprocessPush), {}, "preprocess"),
-      indirect_args_(c, gpu::spirv_words(indirect_args_spv), sizeof(IndirectArgsPush), {}, "indirect_args"),
-      emit_tile_entries_(c, gpu::spirv_words(emit_tile_entries_spv), sizeof(EmitTileEntriesPush), {},
-                         "emit_tile_entries"),
-      tile_ranges_(c, gpu::spirv_words(tile_ranges_spv), sizeof(TileRangesPush), {}, "tile_ranges"),
+    : clear_words_(std::make_unique<gpu::Kernel<ClearWordsKernel>>(c)),
+      preprocess_(std::make_unique<gpu::Kernel<PreprocessKernel>>(c)),
+      indirect_args_(std::make_unique<gpu::Kernel<IndirectArgsKernel>>(c)),
+      emit_tile_entries_(std::make_unique<gpu::Kernel<EmitTileEntriesKernel>>(c)),
+      tile_ranges_(std::make_unique<gpu::Kernel<TileRangesKernel>>(c)),
       scan_(c),
       sort_(c) {}
+
+TileBinning::~TileBinning() = default;
 
 void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const CameraParams& params,
                          const SceneAddresses& scene) const {
     const uint32_t n = scene.count;
     const uint32_t tiles_x = params.size[2], tiles_y = params.size[3];
-    const auto counter = [&](Counter slot) { return f.counters.address() + slot * sizeof(uint32_t); };
+    const auto counter = [&](uint32_t slot) { return f.counters.address() + slot * sizeof(uint32_t); };
 
     stream.update(f.camera, &params, sizeof(params));
     uint32_t initial_counters[kCounterCount] = {};
@@ -50,22 +52,35 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
 
     // Each kernel below waits for the one before (a few microseconds apiece however little they
     // do), so the scans' and sorts' setups run beside earlier kernels as soon as their counts are known.
-    record_preprocess(stream, preprocess_,
-                      {f.camera.address(), scene.params, scene.sh, f.means_depth.address(), f.footprints.address(),
-                       f.colors.address(), f.tiles_touched.address(),
-                       f.depth_keys.address(), f.depth_values.address(), f.counters.address(),
-                       depth_digits.value_or(gpu::RadixSort::DigitCounting{})},
-                      n);
+    stream.dispatch(*preprocess_,
+                    {.camera = f.camera.address(),
+                     .params = scene.params,
+                     .sh = scene.sh,
+                     .means_depth = f.means_depth.address(),
+                     .footprints = f.footprints.address(),
+                     .colors = f.colors.address(),
+                     .tiles_touched = f.tiles_touched.address(),
+                     .depth_keys = f.depth_keys.address(),
+                     .depth_values = f.depth_values.address(),
+                     .counters = f.counters.address(),
+                     .depth_digits = depth_digits.value_or(gpu::RadixSort::DigitCounting{})},
+                    gpu::groups_for(n));
     // Tiles that get no entries keep an empty range (tile_ranges.comp).
-    record_clear_words(stream, clear_words_, {f.ranges.address(), 2 * tiles_x * tiles_y, 0});
+    const uint32_t range_words = 2 * tiles_x * tiles_y;
+    stream.dispatch(*clear_words_, {.words = f.ranges.address(), .count = range_words, .value = 0},
+                    gpu::groups_for(range_words));
     if (!depth_digits)
         sort_.record_setup(stream, f.depth_keys, f.depth_values, counter(kCounterGaussians), *f.sort_scratch);
     stream.barrier();
     stream.mark("preprocess");
 
-    record_indirect_args(stream, indirect_args_,
-                         {counter(kCounterVisible), counter(kCounterVisible), counter(kCounterVisibleArgs),
-                          f.gaussian_capacity, 256});
+    stream.dispatch(*indirect_args_,
+                    {.count_in = counter(kCounterVisible),
+                     .count_out = counter(kCounterVisible),
+                     .args = counter(kCounterVisibleArgs),
+                     .capacity = f.gaussian_capacity,
+                     .per_group = 256},
+                    1);
     scan_.record_setup(stream, counter(kCounterVisible), *f.scan_scratch);
     sort_.record(stream, f.depth_keys, f.depth_values, 32, *f.sort_scratch, depth_digits.has_value());
     stream.barrier();
@@ -77,13 +92,21 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     scan_.record(stream, f.tiles_touched.address(), f.entry_offsets.address(), counter(kCounterEntriesNeeded),
                  *f.scan_scratch, f.depth_values.address());
     stream.barrier();
-    record_indirect_args(stream, indirect_args_,
-                         {counter(kCounterEntriesNeeded), counter(kCounterEntries), counter(kCounterEntryArgs),
-                          f.entry_capacity, 256 * kTileRangeEntriesPerInvocation});
-    record_emit_tile_entries(stream, emit_tile_entries_,
-                             {f.camera.address(), f.counters.address(), f.depth_values.address(),
-                              f.entry_offsets.address(), f.footprints.address(), f.tile_keys.address(),
-                              f.tile_values.address()},
+    stream.dispatch(*indirect_args_,
+                    {.count_in = counter(kCounterEntriesNeeded),
+                     .count_out = counter(kCounterEntries),
+                     .args = counter(kCounterEntryArgs),
+                     .capacity = f.entry_capacity,
+                     .per_group = 256 * TILE_RANGES_ENTRIES_PER_INVOCATION},
+                    1);
+    stream.dispatch_indirect(*emit_tile_entries_,
+                             {.camera = f.camera.address(),
+                              .counters = f.counters.address(),
+                              .depth_values = f.depth_values.address(),
+                              .entry_offsets = f.entry_offsets.address(),
+                              .footprints = f.footprints.address(),
+                              .tile_keys = f.tile_keys.address(),
+                              .tile_values = f.tile_values.address()},
                              f.counters, kCounterVisibleArgs * sizeof(uint32_t));
     // The sort clamps the entries needed to what the tile buffers hold, as indirect_args does.
     sort_.record_setup(stream, f.tile_keys, f.tile_values, counter(kCounterEntriesNeeded), *f.sort_scratch);
@@ -95,9 +118,12 @@ void TileBinning::record(gpu::CommandStream& stream, FrameResources& f, const Ca
     stream.barrier();
     stream.mark("tile sort");
 
-    record_tile_ranges(stream, tile_ranges_,
-                       {f.counters.address(), f.tile_keys.address(), f.ranges.address(), tiles_x * tiles_y},
-                       f.counters, kCounterEntryArgs * sizeof(uint32_t));
+    stream.dispatch_indirect(*tile_ranges_,
+                             {.counters = f.counters.address(),
+                              .tile_keys = f.tile_keys.address(),
+                              .ranges = f.ranges.address(),
+                              .tile_count = tiles_x * tiles_y},
+                             f.counters, kCounterEntryArgs * sizeof(uint32_t));
     stream.barrier();
     stream.mark("ranges");
 }

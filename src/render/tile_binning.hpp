@@ -3,15 +3,25 @@
 // each tile's depth-ordered list of splats: preprocess (which also keys every Gaussian for the
 // depth sort, the culled ones last), the depth sort, the tile entries, the stable tile sort and the tile ranges. The renderer and the
 // trainer both record it, then blend (and the trainer differentiates) what it leaves in the
-// FrameResources.
+// FrameResources. Its kernels: shaders/render/{preprocess,clear_words,indirect_args,
+// emit_tile_entries,tile_ranges}.comp, their layouts in shaders/render/tile_binning.h.
 #include <cstdint>
+#include <memory>
 
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 #include "gpu/prefix_scan.hpp"
 #include "gpu/radix_sort.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
+
+namespace vksplat::shader::render {
+struct PreprocessKernel;
+struct ClearWordsKernel;
+struct IndirectArgsKernel;
+struct EmitTileEntriesKernel;
+struct TileRangesKernel;
+}  // namespace vksplat::shader::render
 
 namespace vksplat::render {
 
@@ -34,6 +44,7 @@ void check_entries_sortable(uint32_t needed);
 class TileBinning {
 public:
     explicit TileBinning(const gpu::Context& context);
+    ~TileBinning();
 
     // Records the camera and counter uploads and the passes up to the tile ranges into `stream`,
     // working in `frame` (sized for the scene, the image and params.entry_capacity entries by the
@@ -44,7 +55,11 @@ public:
                 const SceneAddresses& scene) const;
 
 private:
-    gpu::ComputePipeline clear_words_, preprocess_, indirect_args_, emit_tile_entries_, tile_ranges_;
+    std::unique_ptr<gpu::Kernel<shader::render::ClearWordsKernel>> clear_words_;
+    std::unique_ptr<gpu::Kernel<shader::render::PreprocessKernel>> preprocess_;
+    std::unique_ptr<gpu::Kernel<shader::render::IndirectArgsKernel>> indirect_args_;
+    std::unique_ptr<gpu::Kernel<shader::render::EmitTileEntriesKernel>> emit_tile_entries_;
+    std::unique_ptr<gpu::Kernel<shader::render::TileRangesKernel>> tile_ranges_;
     gpu::PrefixScan scan_;
     gpu::RadixSort sort_;
 };

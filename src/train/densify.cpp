@@ -8,7 +8,7 @@
 
 #include "gpu/compute_pipeline.hpp"
 #include "gpu/transfer.hpp"
-#include "render/passes.hpp"
+#include "gpu/kernel.hpp"
 #include "train/parameter_layout.hpp"
 #include "shaders/densify_gather.spv.h"
 #include "shaders/reset_opacity.spv.h"
@@ -175,7 +175,7 @@ TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPl
                           scene.layout.sh_coefficients * 3};
     gpu::CommandStream stream(context, 0);
     stream.begin();
-    stream.dispatch(impl_->gather, push, render::groups_for(m));
+    stream.dispatch(impl_->gather, push, gpu::groups_for(m));
     stream.submit_and_wait();
     return next;
 }
@@ -185,7 +185,7 @@ void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) con
                                 scene.layout.count, float(std::log(max_opacity / (1.0 - max_opacity)))};
     gpu::CommandStream stream(impl_->context, 0);
     stream.begin();
-    stream.dispatch(impl_->reset, push, render::groups_for(scene.layout.count));
+    stream.dispatch(impl_->reset, push, gpu::groups_for(scene.layout.count));
     stream.submit_and_wait();
 }
 

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstring>
 
-#include "render/passes.hpp"
 #include "shaders/blend_backward.spv.h"
 #include "shaders/blend_backward_cas.spv.h"
 #include "shaders/blend_train.spv.h"

@@ -1,20 +1,9 @@
 #ifndef GATHER_STATS
 #error define GATHER_STATS before including blend_body.glsl
 #endif
-// CARRY_STATE 1 (blend_carry.comp, blend_stats_carry.comp): one depth-ordered chunk of a frame
-// too large for the memory budget. The pixel state is loaded from the previous chunk and, except
-// after the last chunk, stored for the next one instead of the finished pixel (the CARRY_ blocks).
-#ifndef CARRY_STATE
-#define CARRY_STATE 0
-#endif
-// TRAIN_OUTPUTS 1 (blend_train.comp): also write what the backward pass (blend_backward.glsl)
-// replays each pixel from: its final transmittance, exactly (1 - alpha loses it near 1e-4), and
-// the end of the part of its tile's list it walked (one past the last splat it blended).
-#ifndef TRAIN_OUTPUTS
-#define TRAIN_OUTPUTS 0
-#endif
-// The blend pass, included by blend.comp (GATHER_STATS 0) and blend_stats.comp (1), so that the
-// plain pipeline holds no statistics code (and needs no 64-bit integers) at all.
+// The blend pass, included by every blend variant (shaders/render/blend.h says which flags choose
+// what) after its push constants `pc`, so that the plain pipeline holds no statistics code (and
+// needs no 64-bit integers) at all.
 //
 // Blend: one workgroup per 16x16 tile, one thread per pixel. The tile's depth-sorted splats are
 // fetched cooperatively in batches into shared memory, then every pixel composites them front
@@ -28,12 +17,11 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #endif
 
-#include "buffers.glsl"
-#include "constants.glsl"
-#include "footprint.glsl"
-#include "frame.glsl"
-#include "tile_blocks.glsl"
-#include "tile_culling.glsl"
+#include "vksplat/constants.hpp"
+#include "shaders/render/footprint.h"
+#include "shaders/render/frame.h"
+#include "shaders/render/tile_blocks.glsl"
+#include "shaders/render/tile_culling.glsl"
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per batch
@@ -43,46 +31,14 @@ const uint BATCH = 256;  // = threads per workgroup: one fetch per thread per ba
 // with 8 and the colours read ahead too (105 registers: the 2 workgroups per multiprocessor that
 // 70 allowed); 12 spilled to local memory.
 const uint UNROLL = 8;
-#include "block_hit_lists.glsl"
+#include "shaders/render/block_hit_lists.glsl"
 
 #if GATHER_STATS
 // alpha * T in 32.32 fixed point: integer atomics make the sums the same every run.
 const float WEIGHT_SCALE = 4294967296.0;
-layout(buffer_reference, std430, buffer_reference_align = 8) buffer Uint64s { uint64_t v[]; };
 #endif
 
-layout(push_constant) uniform Push {
-    CameraBuffer camera;
-    UVec2s ranges;
-    Uints tile_values;
-    Footprints footprints;
-    Vec4s colors;            // rgb and view depth
-    Vec4s out_color_alpha;   // rgb + background * T, and alpha = 1 - T
-    Floats out_depth;        // expected depth of the blended splats
-    Uints out_contributors;  // splats blended into the pixel
-#if TRAIN_OUTPUTS
-    Floats out_transmittance;  // final T
-    Uints out_last;            // one past the position (in the tile's list) of the last splat blended
-#endif
-#if GATHER_STATS
-    Uint64s stat_weight;     // per Gaussian: sum of alpha * T (fixed point)
-    Uints stat_max_weight;   // per Gaussian: max alpha * T as float bits (non-negative, so uint order)
-    Uints stat_pixels;       // per Gaussian: pixels where alpha >= 1/255
-    Uints stat_centre_weight;  // per Gaussian: alpha * T at the pixel holding its centre (float bits)
-#endif
 #if CARRY_STATE
-    // Two buffers and a word, so that even the statistics variant stays within the 128 bytes of
-    // push constants every device has.
-    Vec4s carried_color;          // colour so far (rgb, no background) and transmittance (a)
-    Vec2s carried_depth_count;    // sum of depth * weight so far; splats blended so far as uint
-                                  // bits, with CARRY_STOPPED once the pixel stopped
-    uint carry_flags;             // CARRY_LOAD | CARRY_LAST
-#endif
-} pc;
-
-#if CARRY_STATE
-const uint CARRY_LOAD = 1u;   // start from the carried state (every chunk but the first)
-const uint CARRY_LAST = 2u;   // write the finished pixel (background added) instead of the state
 const uint CARRY_STOPPED = 0x80000000u;
 #endif
 

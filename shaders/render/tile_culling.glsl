@@ -9,7 +9,7 @@
 #ifndef VKSPLAT_TILE_CULLING_GLSL
 #define VKSPLAT_TILE_CULLING_GLSL
 
-#include "constants.glsl"
+#include "vksplat/constants.hpp"
 
 // d^T C d bound inside which alpha >= 1/255, with a relative margin for float rounding in the
 // blend's exp (a tile kept needlessly costs time; a tile lost would change pixels). Negative

@@ -6,22 +6,14 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_ballot : require
 
-#include "buffers.glsl"
-#include "footprint.glsl"
-#include "frame.glsl"
-#include "tile_culling.glsl"
+#include "shaders/render/tile_binning.h"
+#include "shaders/render/footprint.h"
+#include "shaders/render/frame.h"
+#include "shaders/render/tile_culling.glsl"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    CameraBuffer camera;
-    Uints counters;
-    Uints depth_values;   // Gaussian indices in depth order
-    Uints entry_offsets;  // exclusive scan of the depth-ordered tile counts; the total in COUNTER_ENTRIES_NEEDED
-    Footprints footprints;
-    Uints tile_keys;      // out: tile index (row-major)
-    Uints tile_values;    // out: Gaussian index
-} pc;
+layout(push_constant) uniform Push { EmitTileEntriesPush pc; };
 
 // Where splat k of the depth order has its entries: its Gaussian, footprint and positions
 // [first, end), end clamped to the frame's capacity. The end is the next splat's start (read in

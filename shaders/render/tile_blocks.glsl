@@ -3,8 +3,8 @@
 #ifndef VKSPLAT_TILE_BLOCKS_GLSL
 #define VKSPLAT_TILE_BLOCKS_GLSL
 
-#include "constants.glsl"
-#include "tile_culling.glsl"
+#include "vksplat/constants.hpp"
+#include "shaders/render/tile_culling.glsl"
 
 // The tile is walked as 8 blocks of 8x4 pixels, 32 consecutive invocations each (one warp on
 // NVIDIA). When a splat enters shared memory, the thread that fetched it marks which blocks its

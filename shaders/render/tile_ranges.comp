@@ -9,18 +9,13 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_buffer_reference_uvec2 : require
 
-#include "buffers.glsl"
-#include "frame.glsl"
+#include "shaders/render/tile_binning.h"
+#include "shaders/render/frame.h"
 
 layout(local_size_x = 256) in;
-const uint ENTRIES_PER_INVOCATION = 4;  // tile_binning.cpp sizes the dispatch by it
+const uint ENTRIES_PER_INVOCATION = TILE_RANGES_ENTRIES_PER_INVOCATION;
 
-layout(push_constant) uniform Push {
-    Uints counters;
-    Uints tile_keys;
-    UVec2s ranges;  // out: per tile
-    uint tile_count;  // keys at or past it are padding (tile_culling.glsl) and have no range
-} pc;
+layout(push_constant) uniform Push { TileRangesPush pc; };
 
 // Past either end of the entries: differs from every tile.
 const uint NO_TILE = 0xffffffffu;

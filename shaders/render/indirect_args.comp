@@ -4,17 +4,11 @@
 // unclamped count stays where it was, for the host to grow the buffers after the frame.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/render/tile_binning.h"
 
 layout(local_size_x = 1) in;
 
-layout(push_constant) uniform Push {
-    Uints count_in;
-    Uints count_out;              // count clamped to capacity
-    DispatchArgsBuffer args;
-    uint capacity;
-    uint per_group;               // elements one workgroup covers per loop iteration
-} pc;
+layout(push_constant) uniform Push { IndirectArgsPush pc; };
 
 void main() {
     const uint count = min(pc.count_in.v[0], pc.capacity);

@@ -3,16 +3,22 @@
 // separate buffer (mean, conic and opacity, tile rectangle, tile count) cost one more memory
 // sector per splat: lego tiled 5x5, 5.3 M splats, emission read four. Written by preprocess
 // (drawn splats only); the colour buffer carries the depth beside the colour for the blends.
-#ifndef VKSPLAT_FOOTPRINT_GLSL
-#define VKSPLAT_FOOTPRINT_GLSL
+#ifndef VKSPLAT_RENDER_FOOTPRINT_H
+#define VKSPLAT_RENDER_FOOTPRINT_H
 
-#include "buffers.glsl"
+#include "shaders/common/buffers.h"
+
+SHADER_NAMESPACE_BEGIN(render)
 
 struct Footprint {
     vec4 mean_conic;  // pixel position (x, y), conic a, b
     uvec4 rest;       // conic c and opacity as float bits, tile rectangle min and max as x | y << 16
 };
-layout(buffer_reference, std430, buffer_reference_align = 16) buffer Footprints { Footprint v[]; };
+BUFFER_REFERENCE(Footprints, Footprint, 16)
+
+SHADER_NAMESPACE_END
+
+#ifndef __cplusplus
 
 Footprint make_footprint(vec2 mean, vec3 conic, float opacity, uvec2 lo, uvec2 hi) {
     return Footprint(vec4(mean, conic.xy),
@@ -29,5 +35,7 @@ void footprint_rect(Footprint f, out uvec2 lo, out uvec2 hi) {
     lo = uvec2(f.rest.z & 0xffffu, f.rest.z >> 16);
     hi = uvec2(f.rest.w & 0xffffu, f.rest.w >> 16);
 }
+
+#endif  // GLSL
 
 #endif

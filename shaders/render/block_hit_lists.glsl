@@ -8,7 +8,7 @@
 #ifndef VKSPLAT_BLOCK_HIT_LISTS_GLSL
 #define VKSPLAT_BLOCK_HIT_LISTS_GLSL
 
-#include "tile_blocks.glsl"
+#include "shaders/render/tile_blocks.glsl"
 
 // Any subgroup size, down to 1 (lavapipe runs 4 or 8).
 #define WGS_MAX_SUBGROUPS BATCH

@@ -16,37 +16,18 @@
 #extension GL_KHR_shader_subgroup_ballot : require
 #extension GL_KHR_shader_subgroup_vote : require
 
-#include "buffers.glsl"
-#include "constants.glsl"
-#include "footprint.glsl"
-#include "frame.glsl"
-#include "sh.glsl"
-#include "tile_culling.glsl"
+#include "shaders/render/tile_binning.h"
+#include "vksplat/constants.hpp"
+#include "shaders/render/footprint.h"
+#include "shaders/render/frame.h"
+#include "shaders/render/sh.glsl"
+#include "shaders/render/tile_culling.glsl"
 #include "shaders/sort/radix_sort.h"
 
 layout(local_size_x = 256) in;
 #include "shaders/sort/radix_digit_counts.glsl"
 
-layout(push_constant) uniform Push {
-    CameraBuffer camera;
-    Vec4s params;         // 3 per Gaussian: (position, opacity), (scale, -), (quaternion w, x, y, z)
-    Floats sh;            // [Gaussian][coefficient][rgb], floats or packed halves (cam.sh_half)
-    Vec4s means_depth;    // out where cam.write_projection: pixel position (x, y), view depth, radius in pixels
-    Footprints footprints;  // out: position, inverse 2D covariance, opacity, tile rectangle
-    Vec4s colors;         // out: rgb and the view depth
-    Uints tiles_touched;  // out: tiles its alpha >= 1/255 ellipse meets, 0 when not drawn
-    Uints depth_keys;     // out: view depth as float bits if drawn, else NOT_DRAWN
-    Uints depth_values;   // out: Gaussian index
-    Uints counters;       // COUNTER_VISIBLE: drawn splats are added to it
-    // Where the depth sort runs one sweep (digit_passes > 0), this kernel does its histogram
-    // kernel's work (radix_digit_counts.glsl): every key's digits are counted into digit_totals and
-    // the sort's look-back words emptied (RadixSort::DigitCounting).
-    Uints digit_totals;
-    Uints lookback;
-    uint digits[MAX_PASSES];
-    uint digit_passes;
-    uint lookback_words;
-} pc;
+layout(push_constant) uniform Push { PreprocessPush pc; };
 
 // Above the bits of every positive depth (and of every NaN but this one).
 const uint NOT_DRAWN = 0xffffffffu;
@@ -147,9 +128,9 @@ uint preprocess(uint i, CameraParams cam) {
 
 void main() {
     const CameraParams cam = pc.camera.c;
-    const bool count_digits = pc.digit_passes != 0u;  // uniform: the barriers below are allowed
+    const bool count_digits = pc.depth_digits.passes != 0u;  // uniform: the barriers below are allowed
     if (count_digits) {
-        radix_clear_lookback(pc.lookback, pc.lookback_words);
+        radix_clear_lookback(pc.depth_digits.lookback, pc.depth_digits.lookback_words);
         radix_clear_digit_counts();
         barrier();
     }
@@ -159,10 +140,10 @@ void main() {
         const uint key = preprocess(i, cam);
         pc.depth_keys.v[i] = key;
         if (key != NOT_DRAWN) ++drawn;
-        if (count_digits) radix_count_digits(key, pc.digits, pc.digit_passes);
+        if (count_digits) radix_count_digits(key, pc.depth_digits.digits, pc.depth_digits.passes);
     }
     // One atomic per subgroup: the count does not depend on the order they land in.
     const uint subgroup_drawn = subgroupAdd(drawn);
     if (subgroupElect() && subgroup_drawn != 0u) atomicAdd(pc.counters.v[COUNTER_VISIBLE], subgroup_drawn);
-    if (count_digits) radix_add_digit_counts(pc.digit_totals, pc.digit_passes);
+    if (count_digits) radix_add_digit_counts(pc.depth_digits.totals, pc.depth_digits.passes);
 }

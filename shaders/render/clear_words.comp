@@ -4,15 +4,11 @@
 // (small vkCmdUpdateBuffer uploads did not).
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/render/tile_binning.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Uints words;
-    uint count;
-    uint value;
-} pc;
+layout(push_constant) uniform Push { ClearWordsPush pc; };
 
 void main() {
     for (uint i = gl_GlobalInvocationID.x; i < pc.count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x)

@@ -3,16 +3,11 @@
 // 8-bit image or buffer (render/render_target.hpp). Rounds to nearest like the PNG writer.
 #extension GL_GOOGLE_include_directive : require
 
-#include "buffers.glsl"
+#include "shaders/render/pack_rgba8.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Vec4s color_alpha;
-    Uints packed;  // out: one word per pixel, bytes in memory order r, g, b, a (or b, g, r, a)
-    uint pixels;
-    uint bgra;
-} pc;
+layout(push_constant) uniform Push { PackRgba8Push pc; };
 
 void main() {
     for (uint i = gl_GlobalInvocationID.x; i < pc.pixels; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
