@@ -6,12 +6,11 @@
 
 #include <glm/gtc/quaternion.hpp>
 
-#include "gpu/compute_pipeline.hpp"
-#include "gpu/transfer.hpp"
 #include "gpu/kernel.hpp"
+#include "gpu/transfer.hpp"
+#include "shaders/train/densify_gather.kernel.hpp"
+#include "shaders/train/reset_opacity.kernel.hpp"
 #include "train/parameter_layout.hpp"
-#include "shaders/densify_gather.spv.h"
-#include "shaders/reset_opacity.spv.h"
 
 namespace vksplat::train {
 namespace {
@@ -19,17 +18,6 @@ namespace {
 // The reference's split: two new Gaussians sampled from the old one, scales divided by 0.8 * 2.
 constexpr int kSplitCount = 2;
 constexpr float kSplitShrink = 0.8f * kSplitCount;
-
-struct GatherPush {
-    VkDeviceAddress old_params, old_first, old_second, new_params, new_first, new_second, sources, split_values;
-    uint32_t old_count, new_count, fresh_from, split_from, sh_floats;
-};
-
-struct ResetOpacityPush {
-    VkDeviceAddress params, first_moment, second_moment;
-    uint32_t count;
-    float max_logit;
-};
 
 // Reads Gaussian i of the geometry block.
 struct Geometry {
@@ -141,12 +129,10 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
 
 struct DensifyPasses::Impl {
     const gpu::Context& context;
-    gpu::ComputePipeline gather, reset;
+    gpu::Kernel<shader::train::DensifyGatherKernel> gather;
+    gpu::Kernel<shader::train::ResetOpacityKernel> reset;
 
-    explicit Impl(const gpu::Context& c)
-        : context(c),
-          gather(c, gpu::spirv_words(densify_gather_spv), sizeof(GatherPush), {}, "densify_gather"),
-          reset(c, gpu::spirv_words(reset_opacity_spv), sizeof(ResetOpacityPush), {}, "reset_opacity") {}
+    explicit Impl(const gpu::Context& c) : context(c), gather(c), reset(c) {}
 };
 
 DensifyPasses::DensifyPasses(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
@@ -168,24 +154,37 @@ TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPl
     std::vector<float> split_values = plan.split_values;
     if (split_values.empty()) split_values.push_back(0.0f);
     const gpu::Buffer splits = gpu::upload_buffer(context, split_values, "split samples");
-    const GatherPush push{scene.params.address(), scene.first_moment.address(), scene.second_moment.address(),
-                          next.params.address(),  next.first_moment.address(),  next.second_moment.address(),
-                          sources.address(),      splits.address(),             scene.layout.count,
-                          m,                      plan.fresh_from,              plan.split_from,
-                          scene.layout.sh_coefficients * 3};
     gpu::CommandStream stream(context, 0);
     stream.begin();
-    stream.dispatch(impl_->gather, push, gpu::groups_for(m));
+    stream.dispatch(impl_->gather,
+                    {.old_params = scene.params.address(),
+                     .old_first = scene.first_moment.address(),
+                     .old_second = scene.second_moment.address(),
+                     .new_params = next.params.address(),
+                     .new_first = next.first_moment.address(),
+                     .new_second = next.second_moment.address(),
+                     .sources = sources.address(),
+                     .split_values = splits.address(),
+                     .old_count = scene.layout.count,
+                     .new_count = m,
+                     .fresh_from = plan.fresh_from,
+                     .split_from = plan.split_from,
+                     .sh_floats = scene.layout.sh_coefficients * 3},
+                    gpu::groups_for(m));
     stream.submit_and_wait();
     return next;
 }
 
 void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) const {
-    const ResetOpacityPush push{scene.params.address(), scene.first_moment.address(), scene.second_moment.address(),
-                                scene.layout.count, float(std::log(max_opacity / (1.0 - max_opacity)))};
     gpu::CommandStream stream(impl_->context, 0);
     stream.begin();
-    stream.dispatch(impl_->reset, push, gpu::groups_for(scene.layout.count));
+    stream.dispatch(impl_->reset,
+                    {.params = scene.params.address(),
+                     .first_moment = scene.first_moment.address(),
+                     .second_moment = scene.second_moment.address(),
+                     .count = scene.layout.count,
+                     .max_logit = float(std::log(max_opacity / (1.0 - max_opacity)))},
+                    gpu::groups_for(scene.layout.count));
     stream.submit_and_wait();
 }
 

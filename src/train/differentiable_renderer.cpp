@@ -4,42 +4,42 @@
 #include <cmath>
 #include <cstring>
 
-#include "shaders/blend_backward.spv.h"
-#include "shaders/blend_backward_cas.spv.h"
-#include "shaders/blend_train.spv.h"
-#include "shaders/preprocess_backward.spv.h"
-#include "shaders/train_activate.spv.h"
-#include "train/train_passes.hpp"
+#include "shaders/train/blend_backward.kernel.hpp"
+#include "shaders/train/blend_backward_cas.kernel.hpp"
+#include "shaders/train/blend_train.kernel.hpp"
+#include "shaders/train/preprocess_backward.kernel.hpp"
+#include "shaders/train/train_activate.kernel.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::train {
+
+using namespace shader::train;
 namespace {
 
 constexpr uint32_t kInitialEntriesPerGaussian = 4;  // as the renderer starts
 constexpr double kEntryGrowth = 1.25;
 
-gpu::ComputePipeline blend_backward_pipeline(const gpu::Context& context, bool compare_and_swap) {
-    if (context.info().float_atomics && !compare_and_swap)
-        return {context, gpu::spirv_words(blend_backward_spv), sizeof(BlendBackwardPush), {}, "blend_backward"};
-    return {context, gpu::spirv_words(blend_backward_cas_spv), sizeof(BlendBackwardPush), {}, "blend_backward_cas"};
-}
 
 }  // namespace
 
 DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, bool compare_and_swap)
     : context_(c),
       binning_(c),
-      activate_(c, gpu::spirv_words(train_activate_spv), sizeof(ActivatePush), {}, "train_activate"),
-      blend_(c, gpu::spirv_words(blend_train_spv), sizeof(BlendTrainPush), {}, "blend_train"),
-      blend_backward_(blend_backward_pipeline(c, compare_and_swap)),
-      preprocess_backward_(c, gpu::spirv_words(preprocess_backward_spv), sizeof(PreprocessBackwardPush), {},
-                           "preprocess_backward"),
+      activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
+      blend_(std::make_unique<gpu::Kernel<BlendTrainKernel>>(c)),
+      preprocess_backward_(std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c)),
       frame_(c),
       status_(c, sizeof(uint32_t), gpu::MemoryKind::device, "training step status"),
       readback_(c, (render::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::readback,
                 "training step readback") {
     std::memset(readback_.mapped(), 0, readback_.size());
+    if (c.info().float_atomics && !compare_and_swap)
+        blend_backward_ = std::make_unique<gpu::Kernel<BlendBackwardKernel>>(c);
+    else
+        blend_backward_cas_ = std::make_unique<gpu::Kernel<BlendBackwardCasKernel>>(c);
 }
+
+DifferentiableRenderer::~DifferentiableRenderer() = default;
 
 void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles) {
     frame_.ensure_gaussians(gaussians);
@@ -74,15 +74,23 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     const uint32_t n = scene.layout.count;
     tiles_x_ = params.size[2];
     tiles_y_ = params.size[3];
-    record_activate(stream, activate_, {scene.params.address(), render_params_.address(), n});
+    stream.dispatch(*activate_, {.raw = scene.params.address(), .params = render_params_.address(), .count = n},
+                    gpu::groups_for(n));
     // TileBinning's first barrier orders the activation before its preprocess.
     binning_.record(stream, frame_, params, {render_params_.address(), scene.sh_address(), n});
     auto& f = frame_;
-    record_blend_train(stream, blend_,
-                       {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.footprints.address(),
-                        f.colors.address(), f.color_alpha.address(), f.depth.address(), f.contributors.address(),
-                        transmittance_.address(), last_.address()},
-                       tiles_x_, tiles_y_);
+    stream.dispatch(*blend_,
+                    {.camera = f.camera.address(),
+                     .ranges = f.ranges.address(),
+                     .tile_values = f.tile_values.address(),
+                     .footprints = f.footprints.address(),
+                     .colors = f.colors.address(),
+                     .out_color_alpha = f.color_alpha.address(),
+                     .out_depth = f.depth.address(),
+                     .out_contributors = f.contributors.address(),
+                     .out_transmittance = transmittance_.address(),
+                     .out_last = last_.address()},
+                    tiles_x_, tiles_y_);
     stream.barrier();
     stream.mark("blend");
 }
@@ -93,18 +101,32 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     stream.fill(splat_grads_, 0, 0, uint64_t(scene.layout.count) * kSplatGradStride * 4);
     stream.fill(status_, 0);
     stream.barrier();
-    record_blend_backward(stream, blend_backward_,
-                          {f.camera.address(), f.ranges.address(), f.tile_values.address(), f.footprints.address(),
-                           f.colors.address(), transmittance_.address(), last_.address(), pixel_grad,
-                           splat_grads_.address()},
-                          tiles_x_, tiles_y_);
+    const BlendBackwardPush backward{.camera = f.camera.address(),
+                                     .ranges = f.ranges.address(),
+                                     .tile_values = f.tile_values.address(),
+                                     .footprints = f.footprints.address(),
+                                     .colors = f.colors.address(),
+                                     .transmittance = transmittance_.address(),
+                                     .last = last_.address(),
+                                     .pixel_grad = pixel_grad,
+                                     .splat_grads = splat_grads_.address()};
+    if (blend_backward_)
+        stream.dispatch(*blend_backward_, backward, tiles_x_, tiles_y_);
+    else
+        stream.dispatch(*blend_backward_cas_, backward, tiles_x_, tiles_y_);
     stream.barrier();
     stream.mark("blend backward");
-    record_preprocess_backward(stream, preprocess_backward_,
-                               {f.camera.address(), scene.params.address(), f.tiles_touched.address(),
-                                splat_grads_.address(), scene.grads.address(), f.counters.address(), status_.address(),
-                                scene.densify.address(), f.means_depth.address()},
-                               scene.layout.count);
+    stream.dispatch(*preprocess_backward_,
+                    {.camera = f.camera.address(),
+                     .raw = scene.params.address(),
+                     .tiles_touched = f.tiles_touched.address(),
+                     .splat_grads = splat_grads_.address(),
+                     .grads = scene.grads.address(),
+                     .counters = f.counters.address(),
+                     .status = status_.address(),
+                     .densify = scene.densify.address(),
+                     .means_depth = f.means_depth.address()},
+                    gpu::groups_for(scene.layout.count));
     stream.barrier();
     stream.mark("preprocess backward");
 }

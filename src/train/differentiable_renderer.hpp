@@ -4,17 +4,27 @@
 // and per pixel the final transmittance and where its list walk ended). Backward, from dL/d rgb
 // per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour) ->
 // preprocess_backward (gradients of every raw parameter). Both are recorded into the caller's
-// command stream, so a training step is one submission.
+// command stream, so a training step is one submission. Kernels: shaders/train/{train_activate,
+// blend_train,blend_backward,blend_backward_cas,preprocess_backward}.comp, layouts in
+// shaders/train/differentiable_renderer.h.
 #include <cstdint>
 #include <memory>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/tile_binning.hpp"
 #include "train/trainable_scene.hpp"
+
+namespace vksplat::shader::train {
+struct TrainActivateKernel;
+struct BlendTrainKernel;
+struct BlendBackwardKernel;
+struct BlendBackwardCasKernel;
+struct PreprocessBackwardKernel;
+}  // namespace vksplat::shader::train
 
 namespace vksplat::train {
 
@@ -22,6 +32,7 @@ class DifferentiableRenderer {
 public:
     // compare_and_swap: sum gradients with the CAS loop even where the device adds floats atomically.
     explicit DifferentiableRenderer(const gpu::Context& context, bool compare_and_swap = false);
+    ~DifferentiableRenderer();
 
     // Sizes the buffers for the scene and the image (keeps them where they suffice). Tile entries
     // start at a few per Gaussian and grow through grow_entries().
@@ -58,7 +69,12 @@ public:
 private:
     const gpu::Context& context_;
     render::TileBinning binning_;
-    gpu::ComputePipeline activate_, blend_, blend_backward_, preprocess_backward_;
+    std::unique_ptr<gpu::Kernel<shader::train::TrainActivateKernel>> activate_;
+    std::unique_ptr<gpu::Kernel<shader::train::BlendTrainKernel>> blend_;
+    // One of the two: with float atomics, else with compare-and-swap loops.
+    std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardKernel>> blend_backward_;
+    std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardCasKernel>> blend_backward_cas_;
+    std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
     uint32_t pixel_capacity_ = 0;

@@ -4,23 +4,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "shaders/loss_backward.spv.h"
-#include "shaders/loss_forward.spv.h"
+#include "shaders/train/loss_backward.kernel.hpp"
+#include "shaders/train/loss_forward.kernel.hpp"
 
 namespace vksplat::train {
 namespace {
 
 constexpr uint32_t kTile = 16;          // TILE of loss_window.glsl
-constexpr uint32_t kMaxGroups = 65535;  // MAX_GROUPS_X of buffers.glsl: the passes walk tiles in a grid-stride loop
+constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the passes walk tiles in a grid-stride loop
 constexpr uint32_t kPlanes = 9;         // A, B, C per channel (loss_forward.comp)
-
-// The C++ twin of the Push block of loss_window.glsl; both passes take the same one.
-struct LossPush {
-    VkDeviceAddress rendered, photo, planes, partials, gradient;
-    uint32_t width, height, tiles_x, tiles;
-    float ssim_weight, inv_count;
-};
-static_assert(sizeof(LossPush) == 64, "LossPush must match the shaders' push-constant block");
 
 // The forward pass's sums of one workgroup, as it writes them (a vec4).
 struct Partial {
@@ -31,7 +23,8 @@ struct Partial {
 
 struct LossPasses::Impl {
     const gpu::Context& context;
-    gpu::ComputePipeline forward, backward;
+    gpu::Kernel<shader::train::LossForwardKernel> forward;
+    gpu::Kernel<shader::train::LossBackwardKernel> backward;
     gpu::Buffer planes, partials;  // device scratch, grown to the largest image recorded
     gpu::Buffer readback;          // the partials of the last record(), for last()
     // What last() needs of the last record().
@@ -41,8 +34,8 @@ struct LossPasses::Impl {
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          forward(c, gpu::spirv_words(loss_forward_spv), sizeof(LossPush), {}, "loss_forward"),
-          backward(c, gpu::spirv_words(loss_backward_spv), sizeof(LossPush), {}, "loss_backward") {}
+          forward(c),
+          backward(c) {}
 
     // Replaces `buffer` by one of at least `bytes` when it is smaller; contents are not kept.
     void reserve(gpu::Buffer& buffer, VkDeviceSize bytes, gpu::MemoryKind kind, const char* name) {
@@ -73,7 +66,8 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
     d.pixel_channels = 3.0 * double(pixels);
     d.ssim_weight = inputs.ssim_weight;
 
-    const LossPush push{
+    // Both passes take the same push (shaders/train/loss.h).
+    const shader::train::LossPush push{
         .rendered = inputs.rendered,
         .photo = inputs.photo,
         .planes = d.planes.address(),

@@ -6,14 +6,14 @@
 // and gets no gradient from its own terms (the means still divide by every pixel, so a mask only
 // removes terms). It still lies in the SSIM windows of its neighbours, so within 5 pixels of an
 // unmasked pixel it gets their share of the gradient, as autograd of (mask * ssim_map) gives.
-// The forward and backward passes are shaders/loss_forward.comp and shaders/loss_backward.comp;
+// The forward and backward passes are shaders/train/loss_forward.comp and loss_backward.comp;
 // vksplat/reference/training_loss.hpp is the double-precision oracle.
 #include <cstdint>
 #include <memory>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 
 namespace vksplat::train {
 

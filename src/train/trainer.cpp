@@ -13,9 +13,8 @@
 #include "train/densify.hpp"
 #include "train/differentiable_renderer.hpp"
 #include "train/loss_passes.hpp"
-#include "train/train_passes.hpp"
 #include "train/trainable_scene.hpp"
-#include "shaders/adam_step.spv.h"
+#include "shaders/train/adam_step.kernel.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 
@@ -59,7 +58,7 @@ struct Trainer::Impl {
     TrainableScene scene;
     DifferentiableRenderer renderer;
     LossPasses loss;
-    gpu::ComputePipeline adam;
+    gpu::Kernel<shader::train::AdamStepKernel> adam;
     DensifyPasses densify;
     gpu::CommandStream stream;
     gpu::Buffer photo_upload, photo, pixel_grad;
@@ -72,7 +71,7 @@ struct Trainer::Impl {
           options(o),
           renderer(c),
           loss(c),
-          adam(c, gpu::spirv_words(adam_step_spv), sizeof(AdamPush), {}, "adam_step"),
+          adam(c),
           densify(c),
           stream(c),
           sh_degree(o.sh_degree) {}
@@ -96,27 +95,27 @@ struct Trainer::Impl {
         return std::exp(std::log(r.position_initial) * (1 - t) + std::log(r.position_final) * t) * options.scene_extent;
     }
 
-    AdamPush adam_push() const {
+    shader::train::AdamStepPush adam_push() const {
         const auto& r = options.rates;
         const double t = double(iteration + 1);
-        return {scene.params.address(),
-                scene.grads.address(),
-                scene.first_moment.address(),
-                scene.second_moment.address(),
-                renderer.status_buffer().address(),
-                scene.layout.count,
-                scene.layout.sh_coefficients * 3,
-                static_cast<float>(position_rate()),
-                static_cast<float>(r.scale),
-                static_cast<float>(r.rotation),
-                static_cast<float>(r.opacity),
-                static_cast<float>(r.sh_dc),
-                static_cast<float>(r.sh_rest),
-                kBeta1,
-                kBeta2,
-                kEpsilon,
-                static_cast<float>(1.0 - std::pow(double(kBeta1), t)),
-                static_cast<float>(1.0 - std::pow(double(kBeta2), t))};
+        return {.params = scene.params.address(),
+                .grads = scene.grads.address(),
+                .first_moment = scene.first_moment.address(),
+                .second_moment = scene.second_moment.address(),
+                .status = renderer.status_buffer().address(),
+                .count = scene.layout.count,
+                .sh_floats = scene.layout.sh_coefficients * 3,
+                .lr_position = static_cast<float>(position_rate()),
+                .lr_scale = static_cast<float>(r.scale),
+                .lr_rotation = static_cast<float>(r.rotation),
+                .lr_opacity = static_cast<float>(r.opacity),
+                .lr_sh_dc = static_cast<float>(r.sh_dc),
+                .lr_sh_rest = static_cast<float>(r.sh_rest),
+                .beta1 = kBeta1,
+                .beta2 = kBeta2,
+                .epsilon = kEpsilon,
+                .bias_correction1 = static_cast<float>(1.0 - std::pow(double(kBeta1), t)),
+                .bias_correction2 = static_cast<float>(1.0 - std::pow(double(kBeta2), t))};
     }
 
     StepResult step(const Camera& camera, const Photo& target);
@@ -152,7 +151,9 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
         stream.barrier();
         stream.mark("loss");
         renderer.record_backward(stream, scene, pixel_grad.address());
-        record_adam(stream, adam, adam_push(), scene.layout.total());
+        // One thread per float of the parameter array.
+        stream.dispatch(adam, adam_push(),
+                        gpu::groups_for(static_cast<uint32_t>(std::min<uint64_t>(scene.layout.total(), 0xffffffffu))));
         stream.barrier();
         stream.mark("adam");
         renderer.record_readback(stream);

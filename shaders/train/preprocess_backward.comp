@@ -14,21 +14,11 @@
 #include "vksplat/constants.hpp"
 #include "shaders/render/frame.h"
 #include "shaders/render/sh.glsl"
-#include "train_layout.glsl"
+#include "shaders/train/differentiable_renderer.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    CameraBuffer camera;
-    Floats raw;          // parameters, train_layout.glsl
-    Uints tiles_touched; // per Gaussian: 0 where the frame did not draw it
-    Floats splat_grads;  // SPLAT_GRAD_STRIDE per Gaussian
-    Floats grads;        // out: gradients of `raw`, same layout
-    Uints counters;      // the frame's counters
-    Uints status;        // [0]: STEP_ bits
-    Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by (train_layout.glsl)
-    Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
-} pc;
+layout(push_constant) uniform Push { PreprocessBackwardPush pc; };
 
 // Rotation matrix of a unit quaternion (w, x, y, z), as preprocess.comp builds it.
 mat3 rotation_matrix(vec4 q) {

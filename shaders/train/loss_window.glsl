@@ -1,5 +1,6 @@
-// The training loss's shared parts (loss_forward.comp, loss_backward.comp): the push constants,
-// the SSIM window, and the tiling both passes use.
+// The training loss's shared parts (loss_forward.comp, loss_backward.comp, which declare their
+// push constants `pc`, LossPush of shaders/train/loss.h, before including this): the SSIM window
+// and the tiling both passes use.
 //
 // A workgroup owns a 16 x 16 tile of pixels and walks tiles in a grid-stride loop. To filter the
 // tile with the 11 x 11 window it stages the tile plus a 5-pixel apron (26 x 26) of one channel
@@ -34,20 +35,6 @@ const float WINDOW[TAPS] = float[](1.028380084e-03, 7.598758135e-03, 3.600077213
 const float SSIM_C1 = 0.01 * 0.01;
 const float SSIM_C2 = 0.03 * 0.03;
 
-// The C++ twin is LossPush in src/train/loss_passes.cpp.
-layout(push_constant) uniform Push {
-    Vec4s rendered;     // rgb, alpha unused
-    Uints photo;        // RGBA8, r in the low byte; alpha 0 masks the pixel out
-    Floats planes;      // 9 planes of width * height: for channel c, planes 3c..3c+2 (see loss_forward.comp)
-    Vec4s partials;     // out of the forward pass: per workgroup the sums of |x - y|, SSIM, (x - y)^2
-    Vec4s gradient;     // out of the backward pass: dL/d rgb, w = 0
-    uint width;
-    uint height;
-    uint tiles_x;
-    uint tiles;
-    float ssim_weight;  // lambda
-    float inv_count;    // 1 / (3 * width * height): every mean divides by all pixels and channels
-} pc;
 
 // The first pixel of a tile.
 ivec2 tile_origin(uint tile) { return ivec2(tile % pc.tiles_x, tile / pc.tiles_x) * int(TILE); }

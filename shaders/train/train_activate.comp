@@ -6,15 +6,11 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
-#include "train_layout.glsl"
+#include "shaders/train/differentiable_renderer.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Floats raw;
-    Vec4s params;  // out: 3 vec4 per Gaussian
-    uint count;
-} pc;
+layout(push_constant) uniform Push { TrainActivatePush pc; };
 
 void main() {
     const uint n = pc.count;

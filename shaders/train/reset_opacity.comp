@@ -4,17 +4,11 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
-#include "train_layout.glsl"
+#include "shaders/train/densify.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Floats params;
-    Floats first_moment;
-    Floats second_moment;
-    uint count;
-    float max_logit;
-} pc;
+layout(push_constant) uniform Push { ResetOpacityPush pc; };
 
 void main() {
     const uint n = pc.count;

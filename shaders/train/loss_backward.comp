@@ -9,7 +9,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
-#include "loss_window.glsl"
+#include "shaders/train/loss.h"
+layout(push_constant) uniform Push { LossPush pc; };
+#include "shaders/train/loss_window.glsl"
 
 // A and B travel as a vec2 and C beside them: vec4 arrays of A, B, C would not fit in 16 KiB.
 shared vec2 staged_ab[STAGED];

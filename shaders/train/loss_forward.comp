@@ -20,7 +20,9 @@
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
-#include "loss_window.glsl"
+#include "shaders/train/loss.h"
+layout(push_constant) uniform Push { LossPush pc; };
+#include "shaders/train/loss_window.glsl"
 
 shared vec2 staged_xy[STAGED];
 // The row pass's results: G*x, G*y, G*(x^2 + y^2), G*(xy) along rows. After the last tile they

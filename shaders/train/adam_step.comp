@@ -8,23 +8,11 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
-#include "train_layout.glsl"
+#include "shaders/train/adam_step.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Floats params;
-    Floats grads;
-    Floats first_moment;
-    Floats second_moment;
-    Uints status;
-    uint count;            // Gaussians
-    uint sh_floats;        // SH floats per Gaussian (3 K)
-    float lr_position, lr_scale, lr_rotation, lr_opacity, lr_sh_dc, lr_sh_rest;
-    float beta1, beta2, epsilon;
-    float bias_correction1;  // 1 - beta1^t
-    float bias_correction2;  // 1 - beta2^t
-} pc;
+layout(push_constant) uniform Push { AdamStepPush pc; };
 
 float learning_rate(uint index, uint n) {
     if (index < log_scales_offset(n)) return pc.lr_position;

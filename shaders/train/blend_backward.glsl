@@ -1,7 +1,8 @@
 #ifndef FLOAT_ATOMICS
 #error define FLOAT_ATOMICS before including blend_backward.glsl
 #endif
-// The blend's backward pass, included by blend_backward.comp (FLOAT_ATOMICS 1: the device adds
+// The blend's backward pass, included after its push constants `pc` (BlendBackwardPush,
+// shaders/train/differentiable_renderer.h) by blend_backward.comp (FLOAT_ATOMICS 1: the device adds
 // floats atomically) and blend_backward_cas.comp (0: a compare-and-swap loop, for devices without
 // VK_EXT_shader_atomic_float; the same sums, slower, and in either case their order varies).
 //
@@ -13,7 +14,7 @@
 // the splats skipped there (alpha < 1/255) are skipped here. Unlike the reference, a splat whose
 // alpha was clamped at 0.99 gets no gradient through opacity or shape: the clamp is flat there.
 // A subgroup sums its pixels' gradients for a splat, and one invocation adds the sums to the
-// splat's totals (train_layout.glsl's SPLAT_GRAD_ slots). Like the blend, a pixel walks only its
+// splat's totals (shaders/train/parameter_layout.h's SPLAT_GRAD_ slots). Like the blend, a pixel walks only its
 // block's list of the batch's splats (block_hit_lists.glsl), widened to its subgroup's blocks so
 // that a subgroup's invocations walk one list together.
 #extension GL_KHR_shader_subgroup_basic : require
@@ -28,23 +29,12 @@
 #include "shaders/render/footprint.h"
 #include "shaders/render/frame.h"
 #include "shaders/render/tile_blocks.glsl"
-#include "train_layout.glsl"
+#include "shaders/train/parameter_layout.h"
 
 layout(local_size_x = 256) in;
 const uint BATCH = 256;
 #include "shaders/render/block_hit_lists.glsl"
 
-layout(push_constant) uniform Push {
-    CameraBuffer camera;
-    UVec2s ranges;
-    Uints tile_values;
-    Footprints footprints;
-    Vec4s colors;          // rgb and view depth
-    Floats transmittance;  // per pixel: final T (blend_train.comp)
-    Uints last;            // per pixel: one past the last list position it blended
-    Vec4s pixel_grad;      // per pixel: dL / d rgb
-    Floats splat_grads;    // out, accumulated: SPLAT_GRAD_STRIDE per Gaussian
-} pc;
 
 void add_gradient(uint index, float value) {
     if (value == 0.0) return;

@@ -9,25 +9,11 @@
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
-#include "train_layout.glsl"
+#include "shaders/train/densify.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Floats old_params;
-    Floats old_first;
-    Floats old_second;
-    Floats new_params;
-    Floats new_first;
-    Floats new_second;
-    Uints sources;         // per new Gaussian: the old one it copies
-    Floats split_values;   // per split sample: position (3), log-scale (3)
-    uint old_count;
-    uint new_count;
-    uint fresh_from;       // new Gaussians (zero moments) from here on
-    uint split_from;       // split samples from here on
-    uint sh_floats;        // SH floats per Gaussian (3 K)
-} pc;
+layout(push_constant) uniform Push { DensifyGatherPush pc; };
 
 // Copies `floats` floats of one Gaussian from old offset `from` to new offset `to`.
 void move(uint from, uint to, uint floats, bool fresh) {

@@ -5,5 +5,6 @@
 #define GATHER_STATS 0
 #define TRAIN_OUTPUTS 1
 #include "shaders/render/blend.h"
+#include "shaders/train/differentiable_renderer.h"
 layout(push_constant) uniform Push { BlendTrainPush pc; };
 #include "shaders/render/blend_body.glsl"
