@@ -5,10 +5,10 @@
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 #include "gpu/radix_sort.hpp"
 #include "gpu/transfer.hpp"
-#include "shaders/bandwidth_copy.spv.h"
+#include "shaders/bench/bandwidth_copy.kernel.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/bench/benchmark.hpp"
 #include "vksplat/bench/device_floor.hpp"
@@ -38,12 +38,6 @@ double median_gpu_ms(const gpu::Context& context, int repetitions, Record record
     return median(times);
 }
 
-struct BandwidthCopyPush {
-    VkDeviceAddress source;
-    VkDeviceAddress target;
-    uint32_t count;
-};
-
 }  // namespace
 
 DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions& options) {
@@ -55,9 +49,9 @@ DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions&
         rates.copy_bytes = options.copy_bytes & ~uint64_t(15);
         gpu::Buffer source(context, rates.copy_bytes, gpu::MemoryKind::device, "bandwidth source");
         gpu::Buffer target(context, rates.copy_bytes, gpu::MemoryKind::device, "bandwidth target");
-        const gpu::ComputePipeline copy(context, gpu::spirv_words(bandwidth_copy_spv), sizeof(BandwidthCopyPush), {},
-                                        "bandwidth_copy");
-        const BandwidthCopyPush push{source.address(), target.address(), uint32_t(rates.copy_bytes / 16)};
+        const gpu::Kernel<shader::bench::BandwidthCopyKernel> copy(context);
+        const shader::bench::BandwidthCopyPush push{
+            .source = source.address(), .target = target.address(), .count = uint32_t(rates.copy_bytes / 16)};
         const double ms = median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
             stream.dispatch(copy, push, std::min<uint32_t>((push.count + 255) / 256, 65535));
         });
@@ -65,7 +59,7 @@ DeviceRates measure_device_rates(const gpu::Context& context, const RateOptions&
 
         // A chain of copies of one 16-byte word, each behind a barrier; the difference between
         // two chain lengths removes the frame's own begin and end.
-        const BandwidthCopyPush tiny{source.address(), target.address(), 1};
+        const shader::bench::BandwidthCopyPush tiny{.source = source.address(), .target = target.address(), .count = 1};
         const auto chain_ms = [&](int length) {
             return median_gpu_ms(context, options.repetitions, [&](gpu::CommandStream& stream) {
                 for (int i = 0; i < length; ++i) {

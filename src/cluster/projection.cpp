@@ -1,19 +1,26 @@
 // Projector: uploads one view's projected centres and region map, runs the two projection passes
-// and reads back a region id per Gaussian.
+// (shaders/cluster/cluster_nearest_depth.comp, cluster_project.comp; layouts in
+// shaders/cluster/projection.h) and reads back a region id per Gaussian.
 #include "vksplat/cluster/projection.hpp"
 
+#include <algorithm>
 #include <cstring>
 
-#include "cluster/projection_passes.hpp"
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
-#include "gpu/compute_pipeline.hpp"
+#include "gpu/kernel.hpp"
 #include "gpu/transfer.hpp"
-#include "shaders/cluster_nearest_depth.spv.h"
-#include "shaders/cluster_project.spv.h"
+#include "shaders/cluster/cluster_nearest_depth.kernel.hpp"
+#include "shaders/cluster/cluster_project.kernel.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::cluster {
+namespace {
+
+// 256 per group in a grid-stride loop, at least 1 and at most 65535 groups.
+uint32_t groups_for(uint32_t count) { return std::clamp((count + 255) / 256, 1u, 65535u); }
+
+}  // namespace
 
 OcclusionRule parse_occlusion_rule(const std::string& name) {
     if (name == "depth") return OcclusionRule::depth;
@@ -25,14 +32,14 @@ std::string to_string(OcclusionRule rule) { return rule == OcclusionRule::depth 
 
 struct Projector::Impl {
     const gpu::Context& context;
-    gpu::ComputePipeline nearest_depth;
-    gpu::ComputePipeline project;
+    gpu::Kernel<shader::cluster::ClusterNearestDepthKernel> nearest_depth;
+    gpu::Kernel<shader::cluster::ClusterProjectKernel> project;
     gpu::CommandStream stream;
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          nearest_depth(c, gpu::spirv_words(cluster_nearest_depth_spv), sizeof(NearestDepthPush), {}, "cluster_nearest_depth"),
-          project(c, gpu::spirv_words(cluster_project_spv), sizeof(ProjectPush), {}, "cluster_project"),
+          nearest_depth(c),
+          project(c),
           stream(c) {}
 };
 
@@ -69,13 +76,28 @@ std::vector<int32_t> Projector::project(const GaussianStats& stats, const Region
     if (!blend) {
         stream.fill(nearest, 0xffffffffu);  // above every positive float's bits: no centre yet
         stream.barrier();
-        record_nearest_depth(stream, impl_->nearest_depth,
-                             {centre_buffer.address(), nearest.address(), count, width, height});
+        stream.dispatch(impl_->nearest_depth,
+                        {.centres = centre_buffer.address(),
+                         .nearest = nearest.address(),
+                         .count = count,
+                         .width = width,
+                         .height = height},
+                        groups_for(count));
         stream.barrier();
     }
-    record_project(stream, impl_->project,
-                   {centre_buffer.address(), nearest.address(), region_buffer.address(), labels.address(), count,
-                    width, height, blend ? 1u : 0u, params.depth_ratio, params.depth_offset, params.min_weight});
+    stream.dispatch(impl_->project,
+                    {.centres = centre_buffer.address(),
+                     .nearest = nearest.address(),
+                     .regions = region_buffer.address(),
+                     .labels = labels.address(),
+                     .count = count,
+                     .width = width,
+                     .height = height,
+                     .rule = blend ? 1u : 0u,
+                     .depth_ratio = params.depth_ratio,
+                     .depth_offset = params.depth_offset,
+                     .min_weight = params.min_weight},
+                    groups_for(count));
     stream.barrier();
     stream.copy(labels, readback, n * 4);
     stream.submit_and_wait();

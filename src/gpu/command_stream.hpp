@@ -45,14 +45,6 @@ public:
                            VkDeviceSize offset) {
         dispatch_indirect(kernel, &push, sizeof(push), args, offset);
     }
-    template <class Push>
-    void dispatch(const ComputePipeline& pipeline, const Push& push, uint32_t groups_x, uint32_t groups_y = 1) {
-        dispatch(pipeline, &push, sizeof(Push), groups_x, groups_y);
-    }
-    template <class Push>
-    void dispatch_indirect(const ComputePipeline& pipeline, const Push& push, const Buffer& args, VkDeviceSize offset) {
-        dispatch_indirect(pipeline, &push, sizeof(Push), args, offset);
-    }
     // Makes every earlier shader or transfer write visible to every later shader, indirect-argument
     // or transfer access. Passes are ordered by this one coarse barrier: they are few and each
     // touches most of its inputs, so finer barriers would buy nothing measurable.

@@ -1,6 +1,7 @@
 #pragma once
 // ComputePipeline: one compute shader (embedded SPIR-V) with a push-constant block and
 // specialisation constants (ids 0..n-1, 32-bit each). RAII over the pipeline and its layout.
+// Passes build it as a gpu::Kernel<K> (gpu/kernel.hpp), which names the shader and its push type.
 #include <volk.h>
 
 #include <cstdint>
@@ -11,12 +12,6 @@
 #include "vksplat/gpu/context.hpp"
 
 namespace vksplat::gpu {
-
-// The words of a SPIR-V module embedded as a uint32_t array (cmake/EmbedShaders.cmake).
-template <size_t N>
-std::span<const uint32_t> spirv_words(const uint32_t (&spirv)[N]) {
-    return {spirv, N};
-}
 
 class ComputePipeline {
 public:

@@ -4,15 +4,11 @@
 // bytes through shader cores too, and some drivers run buffer copies on a slower copy engine.
 #extension GL_GOOGLE_include_directive : require
 
-#include "shaders/common/buffers.h"
+#include "shaders/bench/bandwidth_copy.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    UVec4s source;
-    UVec4s target;
-    uint count;  // 16-byte words
-} pc;
+layout(push_constant) uniform Push { BandwidthCopyPush pc; };
 
 void main() {
     for (uint i = gl_GlobalInvocationID.x; i < pc.count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x)

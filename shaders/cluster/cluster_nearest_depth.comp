@@ -5,17 +5,11 @@
 // order). The buffer starts at 0xffffffff (no centre).
 #extension GL_GOOGLE_include_directive : require
 
-#include "shaders/common/buffers.h"
+#include "shaders/cluster/projection.h"
 
 layout(local_size_x = 256) in;
 
-layout(push_constant) uniform Push {
-    Vec4s centres;   // per Gaussian: screen x, y (pixel centres at integers), view depth, visible (> 0)
-    Uints nearest;   // out: per pixel, float bits of the nearest centre's depth
-    uint count;
-    uint width;
-    uint height;
-} pc;
+layout(push_constant) uniform Push { ClusterNearestDepthPush pc; };
 
 void main() {
     for (uint i = gl_GlobalInvocationID.x; i < pc.count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {

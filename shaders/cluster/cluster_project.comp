@@ -8,25 +8,11 @@
 //      least min_weight (w of `centres` holds that weight in this mode).
 #extension GL_GOOGLE_include_directive : require
 
-#include "shaders/common/buffers.h"
+#include "shaders/cluster/projection.h"
 
 layout(local_size_x = 256) in;
 
-layout(buffer_reference, std430, buffer_reference_align = 4) buffer Ints { int v[]; };
-
-layout(push_constant) uniform Push {
-    Vec4s centres;   // per Gaussian: screen x, y, view depth, visible flag (depth) or centre weight (blend)
-    Uints nearest;   // per pixel: nearest centre depth as float bits (depth rule only)
-    Ints regions;    // per pixel: region id, -1 for none
-    Ints labels;     // out: per Gaussian
-    uint count;
-    uint width;
-    uint height;
-    uint rule;
-    float depth_ratio;
-    float depth_offset;
-    float min_weight;
-} pc;
+layout(push_constant) uniform Push { ClusterProjectPush pc; };
 
 void main() {
     for (uint i = gl_GlobalInvocationID.x; i < pc.count; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
