@@ -11,6 +11,7 @@
 #include "gpu/kernel.hpp"
 #include "gpu/context_impl.hpp"
 #include "gpu/prefix_scan.hpp"
+#include "render/entry_growth.hpp"
 #include "render/frame_layout.hpp"
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
@@ -26,11 +27,6 @@
 
 namespace vksplat {
 namespace {
-
-// Tile-entry capacity to start with: a few tiles per Gaussian covers typical scenes; the
-// frame grows it when a view needs more.
-constexpr uint32_t kInitialEntriesPerGaussian = 4;
-constexpr double kEntryGrowth = 1.25;
 
 std::string mebibytes(uint64_t bytes) {
     if (bytes < (1 << 20)) return std::to_string(bytes) + " bytes";
@@ -78,7 +74,7 @@ struct Renderer::Impl {
     render::HostScene host;
     bool has_host = false;
     std::unique_ptr<render::SceneChunks> chunks;  // device buffers for one chunk (chunked frames)
-    double chunk_entries_per_gaussian = kInitialEntriesPerGaussian;  // learnt by chunked frames
+    double chunk_entries_per_gaussian = render::kInitialEntriesPerGaussian;  // learnt by chunked frames
     size_t input_count = 0;                // Gaussians in the cloud given to set_scene
     std::vector<uint32_t> kept_indices;     // input index of each uploaded Gaussian, if any were dropped
     render::FrameResources frame;
@@ -309,7 +305,8 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
     stats = {};
     stats.gaussians = scene.count;
     if (scene.params) {
-        const uint32_t entries = std::max(frame.entry_capacity, std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
+        const uint32_t entries =
+            std::max(frame.entry_capacity, std::max(scene.count, 1u) * render::kInitialEntriesPerGaussian);
         const uint64_t need = scene_device_bytes() +
                               projected_frame_bytes(scene.count, entries, pixels, tiles, false, settings.gather_stats);
         // Without a host copy there is nothing to chunk from: the budget is then the device's own
@@ -326,7 +323,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     const auto [pixels, tiles] = render::image_extent(camera);
     frame.ensure_gaussians(scene.count);
     frame.ensure_image(pixels, tiles);
-    if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * kInitialEntriesPerGaussian);
+    if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * render::kInitialEntriesPerGaussian);
     if (settings.gather_stats) {
         stats_kernel();
         frame.ensure_stats(scene.count);
@@ -346,14 +343,15 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         render::check_entries_sortable(stats.tile_entries);
         if (stats.tile_entries <= frame.entry_capacity) break;
         // The view needs more tile entries than the buffers hold: grow with headroom and redo it.
-        const double grown = std::ceil(stats.tile_entries * kEntryGrowth);
-        if (has_host && scene_device_bytes() + projected_frame_bytes(scene.count, static_cast<uint32_t>(grown), pixels,
-                                                                     tiles, false, settings.gather_stats) > budget) {
+        render::check_frame_attempts(stats.attempts, "view '" + camera.name + "'");
+        const uint32_t grown = render::grown_entry_capacity(stats.tile_entries);
+        if (has_host && scene_device_bytes() + projected_frame_bytes(scene.count, grown, pixels, tiles, false,
+                                                                     settings.gather_stats) > budget) {
             stats = {};
             stats.gaussians = scene.count;
             return false;
         }
-        frame.ensure_entries(static_cast<uint32_t>(grown));
+        frame.ensure_entries(grown);
         ++stats.attempts;
     }
     add_stage_times();
@@ -460,8 +458,8 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
         render::check_entries_sortable(needed);
         if (needed > frame.entry_capacity) {
             ++stats.attempts;
-            chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * kEntryGrowth / count);
-            const auto grown = static_cast<uint32_t>(std::min(std::ceil(needed * kEntryGrowth), double(0x7fffffffu)));
+            chunk_entries_per_gaussian = std::max(chunk_entries_per_gaussian, needed * render::kEntryGrowth / count);
+            const uint32_t grown = render::grown_entry_capacity(needed);
             if (held_with(chunks->capacity, grown) <= budget) {
                 frame.ensure_entries(grown);
                 pending.emplace_front(begin, end);
@@ -523,7 +521,8 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
     const bool packs = pixel_bytes == 4;
 
     // The last recorded frame that finished says how many tile entries its view needed.
-    uint32_t entries = frame.entry_capacity > 0 ? frame.entry_capacity : std::max(scene.count, 1u) * kInitialEntriesPerGaussian;
+    uint32_t entries = frame.entry_capacity > 0 ? frame.entry_capacity
+                                                : std::max(scene.count, 1u) * render::kInitialEntriesPerGaussian;
     stats = {};
     stats.gaussians = scene.count;
     if (recorded) {
@@ -533,7 +532,7 @@ void Renderer::Impl::record_into(VkCommandBuffer command_buffer, const Camera& c
         stats.tile_entries = counters[render::kCounterEntriesNeeded];
         render::check_entries_sortable(stats.tile_entries);
         if (stats.tile_entries > entries)
-            entries = static_cast<uint32_t>(std::min(std::ceil(stats.tile_entries * kEntryGrowth), double(0x7fffffffu)));
+            entries = render::grown_entry_capacity(stats.tile_entries);
     }
     if (!frame.fits(scene.count, pixels, tiles, entries) || (packs && pixels > frame.packed_capacity)) {
         wait_for_recorded_frames();  // pending frames still use the buffers about to be replaced
@@ -624,14 +623,15 @@ SanitizeReport Renderer::set_scene(const GaussianCloud& cloud, const SceneStorag
     // is not known yet: each frame checks again). Otherwise, or when the budget was given (so a
     // frame may need chunks later), the host copy stays for chunked frames.
     const uint32_t n = d.host.count;
+    const uint32_t entries = std::max(n, 1u) * render::kInitialEntriesPerGaussian;
     const bool fits = render::GpuScene::bytes_for(n, d.host.sh_degree, storage.half_sh) +
-                          d.projected_frame_bytes(n, std::max(n, 1u) * kInitialEntriesPerGaussian, 1, 1, false, false) <=
+                          d.projected_frame_bytes(n, entries, 1, 1, false, false) <=
                       d.budget;
     if (fits) d.scene = render::GpuScene::upload(d.context, d.host, storage);
     d.scene.count = n;
     d.scene.sh_degree = d.host.sh_degree;
     d.scene.half_sh = storage.half_sh;
-    d.chunk_entries_per_gaussian = kInitialEntriesPerGaussian;
+    d.chunk_entries_per_gaussian = render::kInitialEntriesPerGaussian;
     d.has_host = !fits || budget_given;
     if (!d.has_host) d.host = {};
     impl_->input_count = cloud.size();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "render/entry_growth.hpp"
 #include "shaders/train/blend_backward.kernel.hpp"
 #include "shaders/train/blend_backward_cas.kernel.hpp"
 #include "shaders/train/blend_train.kernel.hpp"
@@ -14,14 +15,6 @@
 namespace vksplat::train {
 
 using namespace shader::train;
-namespace {
-
-constexpr uint32_t kInitialEntriesPerGaussian = 4;  // as the renderer starts
-constexpr double kEntryGrowth = 1.25;
-
-
-}  // namespace
-
 DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, bool compare_and_swap)
     : context_(c),
       binning_(c),
@@ -44,7 +37,8 @@ DifferentiableRenderer::~DifferentiableRenderer() = default;
 void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles) {
     frame_.ensure_gaussians(gaussians);
     frame_.ensure_image(pixels, tiles);
-    if (frame_.entry_capacity == 0) frame_.ensure_entries(std::max(gaussians, 1u) * kInitialEntriesPerGaussian);
+    if (frame_.entry_capacity == 0)
+        frame_.ensure_entries(std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
     if (gaussians > capacity_) {
         render_params_ = gpu::Buffer();
         render_params_ = gpu::Buffer(context_, uint64_t(gaussians) * 48, gpu::MemoryKind::device, "activated parameters");
@@ -63,7 +57,7 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
 }
 
 void DifferentiableRenderer::grow_entries(uint32_t needed) {
-    frame_.ensure_entries(static_cast<uint32_t>(std::ceil(needed * kEntryGrowth)));
+    frame_.ensure_entries(render::grown_entry_capacity(needed));
 }
 
 void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const TrainableScene& scene,
@@ -158,7 +152,7 @@ uint64_t DifferentiableRenderer::device_bytes() const {
 void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Camera& camera,
                                            const RenderSettings& settings, VkDeviceAddress pixel_grad) {
     gpu::CommandStream stream(context_);
-    for (;;) {
+    for (uint32_t attempts = 1;; ++attempts) {
         const auto params =
             render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false, entry_capacity());
         stream.begin();
@@ -169,6 +163,7 @@ void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Ca
         stream.submit_and_wait();
         const uint32_t needed = entries_needed();  // checked even when the frame fits
         if ((status() & kStepOverflowed) == 0) return;
+        render::check_frame_attempts(attempts, "view '" + camera.name + "'");
         grow_entries(needed);
     }
 }

@@ -8,6 +8,7 @@
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
 #include "gpu/transfer.hpp"
+#include "render/entry_growth.hpp"
 #include "render/frame_layout.hpp"
 #include "train/checkpoint_file.hpp"
 #include "train/densify.hpp"
@@ -23,8 +24,6 @@ namespace {
 
 // torch.optim.Adam's defaults but for epsilon, which the reference sets to 1e-15.
 constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kEpsilon = 1e-15f;
-// Steps an overflowing view may be re-run with grown tile-entry buffers before giving up.
-constexpr uint32_t kMaxAttempts = 8;
 
 uint32_t pack_rgba8(float r, float g, float b, uint8_t alpha) {
     const auto byte = [](float v) {
@@ -161,9 +160,7 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
         stream.submit_and_wait();
         const uint32_t needed = renderer.entries_needed();  // checked even when the frame fits
         if ((renderer.status() & kStepOverflowed) == 0) break;
-        if (result.attempts == kMaxAttempts)
-            throw GpuError("view '" + camera.name + "' still needs more tile entries after " +
-                           std::to_string(kMaxAttempts) + " attempts");
+        render::check_frame_attempts(result.attempts, "view '" + camera.name + "'");
         renderer.grow_entries(needed);
     }
     ++iteration;
