@@ -109,7 +109,7 @@ int main(int argc, char** argv) {
         std::printf("%s: %zu Gaussians on %s, %llu iterations\n", scene_path.c_str(), cloud.size(),
                     context.info().name.c_str(), static_cast<unsigned long long>(iterations));
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
-        const auto report = [](const jobs::FinetuneStatus& s) {
+        const auto report = [](const train::LoopStatus& s) {
             if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
                 std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
                             static_cast<unsigned long long>(s.iteration), s.loss, s.psnr, s.seconds);
@@ -136,7 +136,7 @@ int main(int argc, char** argv) {
             recover.rounds = rounds;
             recover.finetune = options;
             const auto recovered = jobs::prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos,
-                                                           recover, quality, [&](int, const jobs::FinetuneStatus& s) {
+                                                           recover, quality, [&](int, const train::LoopStatus& s) {
                                                                report(s);
                                                            });
             for (size_t r = 0; r < recovered.rounds.size(); ++r)

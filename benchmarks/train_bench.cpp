@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
             }
             return quality;
         };
-        const auto progress = [last = -1.0](const jobs::TrainStatus& s) mutable {
+        const auto progress = [last = -1.0](const train::LoopStatus& s) mutable {
             if (s.seconds - last < 10.0 && s.iteration != s.iterations) return;
             last = s.seconds;
             std::printf("  iteration %6llu: %8zu Gaussians, loss %.4f, train PSNR %.2f dB, %.1f s, ETA %.0f s\n",
@@ -91,7 +91,7 @@ int main(int argc, char** argv) {
         std::printf("trained %llu iterations (skipped %llu) in %.1f s (densification %.1f s): %zu Gaussians, GPU median %.3f ms per "
                     "iteration, peak device memory %.1f MB, scene extent %.3f\n",
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
-                    result.seconds, result.densify_seconds, result.gaussians, result.gpu_ms_per_iteration,
+                    result.seconds, result.strategy_seconds, result.gaussians, result.gpu_ms_per_iteration,
                     double(result.peak_device_bytes) / 1e6, result.scene_extent);
         std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);
         return 0;

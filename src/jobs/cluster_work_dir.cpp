@@ -307,7 +307,7 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
                                    const std::vector<Camera>& cameras, const ClusterOptions& options,
                                    const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
                                    const fs::path& out, const ClusterStageIo& io,
-                                   const std::function<void(const FinetuneStatus&)>& progress) {
+                                   const std::function<void(const train::LoopStatus&)>& progress) {
     io::check_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
@@ -329,7 +329,7 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
     }
     recover.rounds = 1;
     result.recover = prune_and_recover(context, renderer, cloud, ranking, selection.gaussians_kept, cameras, photos,
-                                       recover, {}, [&](int, const FinetuneStatus& s) {
+                                       recover, {}, [&](int, const train::LoopStatus& s) {
                                            if (progress) progress(s);
                                        });
     const GaussianCloud& refitted = result.recover.cloud;

@@ -41,7 +41,7 @@ void check_recover(const RecoverOptions& options, const std::vector<Camera>& cam
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
                                 const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
-                                const std::function<void(int round, const FinetuneStatus&)>& progress) {
+                                const std::function<void(int round, const train::LoopStatus&)>& progress) {
     FinetuneOptions finetune = options.finetune;
     finetune.iterations = iterations_per_round(options);
     const std::vector<size_t> train = split_views(cameras, finetune.test_views, finetune.train_views).train;
@@ -57,7 +57,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         // Only the last round's model is measured: the others are intermediate.
         const bool last = round == options.rounds;
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
-                                    [&](const FinetuneStatus& s) {
+                                    [&](const train::LoopStatus& s) {
                                         if (progress) progress(round, s);
                                     });
         model = std::move(done.refit.cloud);

@@ -121,7 +121,7 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     const PhotoSource photos = recover_photos(options);
     const gpu::Context& context = renderer.context();
     const prune::Ranking ranking(scored.scores, scored.candidates);
-    const auto report = [&](int round, const FinetuneStatus& status) {
+    const auto report = [&](int round, const train::LoopStatus& status) {
         if (progress.refit) progress.refit(round, status);
     };
     if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
@@ -130,7 +130,7 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         finetune.iterations = recover.iterations;
         refitted.refit = [&](const GaussianCloud& model) {
             return finetune_scene(context, model, cameras, photos, finetune, {},
-                                  [&](const FinetuneStatus& s) { report(1, s); })
+                                  [&](const train::LoopStatus& s) { report(1, s); })
                 .cloud;
         };
         result.budget = prune::fit_quality_budget(renderer, cloud, ranking, targets, refitted, options.settings,

@@ -2,7 +2,6 @@
 #include "vksplat/jobs/train_scene.hpp"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <map>
 
@@ -11,24 +10,20 @@
 #include "jobs/fingerprint.hpp"
 #include "vksplat/io/output_folders.hpp"
 #include "jobs/run_checkpoint.hpp"
+#include "jobs/training_setup.hpp"
 #include "vksplat/camera_focus.hpp"
 #include "vksplat/error.hpp"
-#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/dataset.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/sfm_points.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/initialize.hpp"
-#include "vksplat/train/scene_extent.hpp"
-#include "vksplat/train/skipped_steps.hpp"
 #include "stats/median.hpp"
 
 namespace vksplat::jobs {
 namespace {
 
 namespace fs = std::filesystem;
-using Clock = std::chrono::steady_clock;
-
-constexpr double kReportSeconds = 0.5;
 // What training holds per Gaussian besides its SH: 11 raw parameters, 4 copies (parameters,
 // gradients, two moments); activated parameters 48, per-splat gradients 36, densification sums 12,
 // and the frame's per-Gaussian arrays (about 100 bytes) with some tile entries (8 bytes each for
@@ -71,16 +66,6 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
     return points;
 }
 
-nlohmann::json camera_json(const Camera& camera, size_t id, const char* split) {
-    const glm::dmat3 to_world = glm::transpose(camera.rotation);
-    const glm::dvec3 centre = camera.centre();
-    nlohmann::json rotation = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) rotation.push_back({to_world[0][r], to_world[1][r], to_world[2][r]});
-    return {{"id", id},           {"img_name", camera.name}, {"width", camera.width}, {"height", camera.height},
-            {"position", {centre.x, centre.y, centre.z}}, {"rotation", rotation},   {"fx", camera.fx},
-            {"fy", camera.fy},    {"cx", camera.cx},         {"cy", camera.cy},        {"split", split}};
-}
-
 void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) { out << json.dump(2) << '\n'; });
 }
@@ -113,57 +98,33 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
                                 uint64_t seed) {
     if (!(resolution_scale > 0 && resolution_scale <= 1))
         throw InputError("--resolution-scale " + std::to_string(resolution_scale), "must lie in (0, 1]");
-    if (!fs::is_directory(data_dir)) throw InputError(data_dir.string(), "is not a folder");
+    io::Dataset dataset = io::read_dataset(data_dir, recipe.test_every);
+    if (dataset.format == "colmap") refuse_distortion(dataset.warnings, data_dir / "sparse");
+    if (!fs::is_directory(dataset.images_dir))
+        throw InputError(dataset.images_dir.string(), "no such folder of photos");
     TrainingData data;
-    io::SfmPoints points;
-    if (fs::exists(data_dir / "sparse" / "0") || fs::exists(data_dir / "sparse")) {
-        data.format = "colmap";
-        const fs::path model = fs::exists(data_dir / "sparse" / "0") ? data_dir / "sparse" / "0" : data_dir / "sparse";
-        data.cameras = io::read_colmap_cameras(model, &data.warnings);
-        for (const auto& entry : fs::directory_iterator(model))
-            if (entry.is_regular_file()) data.inputs.push_back(entry.path());
-        refuse_distortion(data.warnings, model);
-        points = io::read_sfm_points(model, &data.warnings);
-        data.images_dir = data_dir / "images";
-        // The reference's llffhold: every test_every-th camera by image name (read sorted) is held out.
-        for (size_t i = 0; i < data.cameras.size(); ++i)
-            (recipe.test_every > 0 && i % recipe.test_every == 0 ? data.test_views : data.train_views).push_back(i);
-    } else if (fs::exists(data_dir / "transforms_train.json")) {
-        data.format = "nerf-synthetic";
-        data.cameras = io::read_nerf_transforms(data_dir / "transforms_train.json");
-        data.inputs = {data_dir / "transforms_train.json", data_dir / "transforms_test.json"};
-        for (size_t i = 0; i < data.cameras.size(); ++i) data.train_views.push_back(i);
-        if (fs::exists(data_dir / "transforms_test.json")) {
-            const auto test = io::read_nerf_transforms(data_dir / "transforms_test.json");
-            for (const auto& camera : test) {
-                data.test_views.push_back(data.cameras.size());
-                data.cameras.push_back(camera);
-            }
-        }
-        points = train::random_points(recipe.random_points, -recipe.random_box, recipe.random_box, seed);
-        data.images_dir = data_dir;
-    } else if (fs::exists(data_dir / "cameras.json")) {
-        data.format = "inria";
-        data.cameras = io::read_inria_cameras(data_dir / "cameras.json");
-        data.inputs = {data_dir / "cameras.json"};
-        data.test_views = default_test_views(data.cameras);
-        // Without splits, a dozen cameras or fewer are all test and all training views (no held-out
-        // set); a file whose splits name every camera a test view leaves nothing to train on.
-        const bool all_test = std::all_of(data.cameras.begin(), data.cameras.end(),
-                                          [](const Camera& c) { return c.split == "test"; });
-        if (all_test)
-            throw InputError((data_dir / "cameras.json").string(), "every camera is a test view (\"split\")");
-        data.train_views = default_train_views(data.cameras.size(), data.test_views);
-        points = points_around_cameras(data.cameras, recipe.random_points, seed);
-        data.images_dir = data_dir / "images";
-    } else {
-        throw InputError(data_dir.string(), "holds neither a COLMAP model (sparse/0), NeRF transforms "
-                                            "(transforms_train.json) nor an INRIA cameras.json");
-    }
-    if (!fs::is_directory(data.images_dir)) throw InputError(data.images_dir.string(), "no such folder of photos");
-    if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
+    data.format = dataset.format;
+    data.cameras = std::move(dataset.cameras);
+    data.images_dir = dataset.images_dir;
+    data.inputs = std::move(dataset.files);
+    data.warnings = std::move(dataset.warnings);
     data.folder = data_dir;
+    // Where the data names no split (an INRIA file without "split"), INRIA's convention: the first
+    // 13 cameras are held out, and a dozen cameras or fewer are all test and all training views.
+    data.test_views = default_test_views(data.cameras);
+    if (!data.cameras.empty() && data.test_views.size() == data.cameras.size() && !data.cameras.front().split.empty())
+        throw InputError(data_dir.string(), "every camera is a test view (\"split\"): nothing is left to train on");
+    data.train_views = default_train_views(data.cameras.size(), data.test_views);
+    if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
     data.held_out = views_held_out(data.test_views, data.train_views);
+
+    // What training starts from: the SfM points where the data has them; else random points, in
+    // the NeRF-synthetic box or in the box the cameras see around their common focus.
+    const io::SfmPoints points =
+        dataset.points                     ? std::move(*dataset.points)
+        : data.format == "nerf-synthetic" ? train::random_points(recipe.random_points, -recipe.random_box,
+                                                                  recipe.random_box, seed)
+                                           : points_around_cameras(data.cameras, recipe.random_points, seed);
     if (resolution_scale != 1.0)
         for (auto& camera : data.cameras)
             camera = camera.resized(std::max(1, int(std::lround(camera.width * resolution_scale))),
@@ -174,7 +135,7 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
 
 TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
                         const TrainOptions& options, const TestMeasure& measure,
-                        const std::function<void(const TrainStatus&)>& progress) {
+                        const std::function<void(const train::LoopStatus&)>& progress) {
     const TrainRecipe& recipe = options.recipe;
     TrainResult result;
     result.ply = fs::absolute(options.out_dir / "point_cloud.ply");
@@ -196,17 +157,12 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.checkpoint_owner = training_owner(data, options);
     const auto resumed = check_run_checkpoint({checkpoint, data.inputs, {result.ply, result.cameras_json, result.metrics_json}},
                                               train_options.checkpoint_owner, options.resume, options.mode);
-    if (!data.held_out)
-        notice(kTestViewsTrainedOnWarning);
+    if (!data.held_out) notice(kTestViewsTrainedOnWarning);
 
-    // Photos first: a missing or mis-sized one is reported before any step.
-    std::map<size_t, train::Photo> train_photos;
+    const std::map<size_t, train::Photo> train_photos = training_photos(photos, data.cameras, data.train_views);
     uint64_t largest_image = 0;
-    for (size_t view : data.train_views) {
-        const Camera& camera = data.cameras[view];
-        train_photos.emplace(view, training_photo(photos, camera));
-        largest_image = std::max<uint64_t>(largest_image, uint64_t(camera.width) * camera.height);
-    }
+    for (size_t view : data.train_views)
+        largest_image = std::max<uint64_t>(largest_image, uint64_t(data.cameras[view].width) * data.cameras[view].height);
     eval::TestViews test;
     test.photos = true;
     for (size_t view : data.test_views) {
@@ -221,18 +177,14 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         throw InputError("--memory-budget", "holds about " + std::to_string(room) + " Gaussians at this resolution, "
                                             "fewer than the " + std::to_string(data.initial.size()) +
                                             " training starts from; raise it or lower --resolution-scale");
-    train::DensifyRules rules = recipe.densify;
-    rules.max_gaussians = rules.max_gaussians > 0 ? std::min(rules.max_gaussians, room) : room;
+    train::ReferenceSchedule schedule = recipe;
+    schedule.densify.max_gaussians = schedule.densify.max_gaussians > 0 ? std::min(schedule.densify.max_gaussians, room) : room;
+    schedule.white_background = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
+    train::ReferenceStrategy strategy(schedule);
 
-    std::vector<Camera> train_cameras;
-    for (size_t view : data.train_views) train_cameras.push_back(data.cameras[view]);
-    const train::SceneExtent extent = train::scene_extent(train_cameras);
-    for (size_t i : extent.distrusted)
-        notice("warning: camera '" + data.cameras[data.train_views[i]].name +
-               "' lies far from the others; left out of the scene extent");
+    result.scene_extent = training_extent(data.cameras, data.train_views, notice);
     if (resumed) notice(resume_notice(*resumed, recipe.iterations));
-    result.scene_extent = extent.radius;
-    train_options.scene_extent = extent.radius;
+    train_options.scene_extent = result.scene_extent;
     train_options.background = options.background;
     train_options.position_schedule = train::PositionSchedule::decay;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
@@ -240,65 +192,15 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         options.resume ? std::make_unique<train::Trainer>(context, checkpoint, train_options)
                        : std::make_unique<train::Trainer>(context, data.initial, train_options);
 
-    const auto start = Clock::now();
-    auto last_report = start;
-    double loss_sum = 0, mse_sum = 0;
-    uint64_t since_report = 0;
-    const uint64_t first = trainer->iteration();
-    std::vector<double> step_times;
-    while (trainer->iteration() < recipe.iterations) {
-        if (options.stop && options.stop->load()) {
-            result.interrupted = true;
-            break;
-        }
-        // The reference counts iterations from 1 and raises the SH degree before the step.
-        const uint64_t iteration = trainer->iteration() + 1;
-        trainer->set_sh_degree(int(std::min<uint64_t>(uint64_t(recipe.sh_degree), iteration / recipe.sh_degree_interval)));
-        const size_t view = training_view(iteration - 1, options.seed, data.train_views);
-        const train::StepResult step = trainer->step(data.cameras[view], train_photos.at(view));
-        train::check_skipped_steps(*trainer, "training from " + data.folder.string());
-        step_times.push_back(step.gpu_milliseconds);
-        result.peak_device_bytes = std::max(result.peak_device_bytes, trainer->device_bytes());
-        loss_sum += step.loss;
-        mse_sum += std::pow(10.0, -step.psnr / 10.0);
-        ++since_report;
-
-        if (iteration < recipe.densify_until) {
-            const auto densify_start = Clock::now();
-            if (iteration > recipe.densify_from && iteration % recipe.densify_interval == 0) {
-                train::DensifyRules now = rules;
-                now.prune_large = iteration > recipe.opacity_reset_interval;
-                trainer->densify(now);
-            }
-            const bool white = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
-            if (iteration % recipe.opacity_reset_interval == 0 || (white && iteration == recipe.densify_from))
-                trainer->reset_opacity(recipe.opacity_reset_value);
-            result.densify_seconds += std::chrono::duration<double>(Clock::now() - densify_start).count();
-        }
-        if (iteration % options.checkpoint_every == 0) trainer->save_checkpoint(checkpoint);
-        const auto now = Clock::now();
-        const bool last = iteration == recipe.iterations;
-        if (progress && (last || std::chrono::duration<double>(now - last_report).count() >= kReportSeconds)) {
-            TrainStatus status;
-            status.iteration = iteration;
-            status.iterations = recipe.iterations;
-            status.gaussians = trainer->size();
-            status.loss = loss_sum / double(since_report);
-            status.psnr = -10.0 * std::log10(mse_sum / double(since_report));
-            status.seconds = std::chrono::duration<double>(now - start).count();
-            status.seconds_left = status.seconds / double(iteration - first) * double(recipe.iterations - iteration);
-            progress(status);
-            last_report = now;
-            loss_sum = mse_sum = 0;
-            since_report = 0;
-        }
-    }
-    result.seconds = std::chrono::duration<double>(Clock::now() - start).count();
-    result.iterations = trainer->iteration();
-    result.skipped = trainer->skipped_steps();
+    train::LoopOptions loop{.iterations = recipe.iterations,
+                            .seed = options.seed,
+                            .checkpoint = checkpoint,
+                            .checkpoint_every = options.checkpoint_every,
+                            .stop = options.stop,
+                            .source = "training from " + data.folder.string()};
+    static_cast<train::LoopResult&>(result) =
+        train::run_training_loop(*trainer, strategy, data.cameras, data.train_views, train_photos, loop, progress);
     result.gaussians = trainer->size();
-    result.gpu_ms_per_iteration = stats::median(std::move(step_times));
-    trainer->save_checkpoint(checkpoint);
     if (result.interrupted) return result;
     const GaussianCloud trained = trainer->cloud();
     trainer.reset();  // its device memory goes before the test renders
@@ -306,10 +208,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
 
     const auto mode = io::WriteMode::overwrite;  // checked above: asked for, resuming, or new
     io::write_scene(trained, result.ply, mode, "ply");
-    nlohmann::json cameras = nlohmann::json::array();
-    for (size_t view : data.train_views) cameras.push_back(camera_json(data.cameras[view], view, "train"));
-    for (size_t view : data.test_views) cameras.push_back(camera_json(data.cameras[view], view, "test"));
-    write_json(result.cameras_json, cameras, mode);
+    // Each camera's split as this run used it, so that the folder re-reads with the same split.
+    std::vector<Camera> cameras = data.cameras;
+    for (size_t view : data.train_views) cameras[view].split = "train";
+    for (size_t view : data.test_views) cameras[view].split = "test";
+    io::write_inria_cameras(result.cameras_json, cameras, mode);
     // No held-out views (COLMAP with --test-every 0, NeRF without transforms_test.json): no test
     // quality, null rather than a PSNR of 0.
     const auto measured = [&](double value) {
@@ -320,7 +223,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"skipped_steps", result.skipped},
                            {"gaussians", result.gaussians},
                            {"seconds", result.seconds},
-                           {"densify_seconds", result.densify_seconds},
+                           {"densify_seconds", result.strategy_seconds},
                            {"gpu_ms_per_iteration", result.gpu_ms_per_iteration},
                            {"peak_device_bytes", result.peak_device_bytes},
                            {"scene_extent", result.scene_extent},

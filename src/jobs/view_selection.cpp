@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <charconv>
-#include <random>
 #include <numeric>
 
 #include "vksplat/error.hpp"
@@ -70,14 +69,6 @@ std::vector<size_t> default_train_views(size_t camera_count, const std::vector<s
     if (views.empty())
         for (size_t i = 0; i < camera_count; ++i) views.push_back(i);
     return views;
-}
-
-size_t training_view(uint64_t iteration, uint64_t seed, const std::vector<size_t>& views) {
-    const uint64_t epoch = iteration / views.size();
-    std::vector<size_t> order = views;
-    std::mt19937_64 rng(seed * 0x9e3779b97f4a7c15ull + epoch);
-    std::shuffle(order.begin(), order.end(), rng);
-    return order[iteration % views.size()];
 }
 
 void check_view_indices(const std::vector<size_t>& views, size_t camera_count) {

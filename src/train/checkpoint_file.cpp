@@ -33,7 +33,8 @@ public:
     }
     std::string text(const char* what) {
         const uint64_t size = number(what);
-        if (size > kMaxOwnerText) throw InputError(path_.string(), std::string("checkpoint is corrupt (its ") + what + ")");
+        if (size > kMaxOwnerText)
+            throw InputError(path_.string(), std::string("checkpoint is corrupt (its ") + what + ")");
         std::string value(size, '\0');
         bytes(value.data(), size, what);
         return value;

@@ -175,7 +175,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                     *context, *renderer, cloud, cameras, options,
                     jobs::photos_in_folder(args.images, options.settings.background), recover,
                     args.recover_loss == "subject" ? masks : jobs::SubjectMasks{}, args.out, io,
-                    [&](const jobs::FinetuneStatus& s) { line.update(s.iteration, s.iterations); });
+                    [&](const train::LoopStatus& s) { line.update(s.iteration, s.iterations); });
                 result = done.prune;
                 const auto& refit = done.recover.rounds.back().refit;
                 std::printf("re-fitted %llu iterations in %.1f s (%s loss, %zu views)\n",

@@ -25,7 +25,7 @@ struct FinetuneArgs {
     bool resume = false, force = false, quiet = false;
 };
 
-void print_status(const jobs::FinetuneStatus& s, bool terminal) {
+void print_status(const train::LoopStatus& s, bool terminal) {
     std::fprintf(stderr, "%siteration %llu/%llu  loss %.4f  train PSNR %.2f dB  %zu Gaussians  %.0f s, %.0f s left%s",
                  terminal ? "\r" : "", static_cast<unsigned long long>(s.iteration),
                  static_cast<unsigned long long>(s.iterations), s.loss, s.psnr, s.gaussians, s.seconds, s.seconds_left,
@@ -75,7 +75,7 @@ int run_finetune(const FinetuneArgs& args) {
     std::fprintf(stderr, "re-fitting %zu Gaussians on %s: %llu iterations\n", cloud.size(), context.info().name.c_str(),
                  static_cast<unsigned long long>(args.iterations));
     const auto result = jobs::finetune_scene(context, cloud, cameras, photos, options, quality,
-                                             [&](const jobs::FinetuneStatus& s) {
+                                             [&](const train::LoopStatus& s) {
                                                  if (!args.quiet || s.iteration == s.iterations) print_status(s, terminal);
                                              });
     if (result.sanitize.changed())

@@ -123,7 +123,7 @@ int run_prune(const PruneArgs& args) {
     };
     std::unique_ptr<ProgressLine> refit;
     int refit_round = 0;
-    progress.refit = [&](int round, const jobs::FinetuneStatus& status) {
+    progress.refit = [&](int round, const train::LoopStatus& status) {
         if (round != refit_round || !refit) {
             refit_round = round;
             refit = std::make_unique<ProgressLine>("re-fit round " + std::to_string(round) + ", iterations");

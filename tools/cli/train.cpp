@@ -56,7 +56,7 @@ int run_train(const TrainArgs& args) {
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
     const auto result = jobs::train_scene(
         context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale), options,
-        measure, [&](const jobs::TrainStatus& s) {
+        measure, [&](const train::LoopStatus& s) {
             if (args.quiet && s.iteration != s.iterations) return;
             std::fprintf(stderr, "%siteration %llu/%llu  %zu Gaussians  loss %.4f  train PSNR %.2f dB  %.0f s, %.0f s left%s",
                          terminal ? "\r" : "", static_cast<unsigned long long>(s.iteration),

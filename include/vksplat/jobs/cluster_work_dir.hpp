@@ -78,6 +78,6 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
                                    const std::vector<Camera>& cameras, const ClusterOptions& options,
                                    const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
                                    const std::filesystem::path& out, const ClusterStageIo& io,
-                                   const std::function<void(const FinetuneStatus&)>& progress = {});
+                                   const std::function<void(const train::LoopStatus&)>& progress = {});
 
 }  // namespace vksplat::jobs

@@ -21,6 +21,7 @@
 #include "vksplat/eval/quality.hpp"
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/train/trainer.hpp"
+#include "vksplat/train/training_loop.hpp"
 
 namespace vksplat::jobs {
 
@@ -84,24 +85,12 @@ struct FinetuneOptions {
     }
 };
 
-struct FinetuneStatus {
-    uint64_t iteration = 0, iterations = 0;
-    double loss = 0;             // mean over the last steps reported
-    double psnr = 0;             // of the training views stepped on since the last report
-    double seconds = 0, seconds_left = 0;
-    size_t gaussians = 0;
-};
 
-struct FinetuneResult {
+// What the loop measured (train::LoopResult: steps, skipped, time, per-pass GPU medians), and:
+struct FinetuneResult : train::LoopResult {
     GaussianCloud cloud;                 // the re-fitted scene (sanitised input, Gaussians as given)
     SanitizeReport sanitize;
     std::optional<eval::Quality> before, after;  // on the test views, when a probe was given
-    uint64_t iterations = 0;             // steps taken in all, a resumed run's earlier ones included
-    uint64_t skipped = 0;                // of which skipped for non-finite gradients
-    bool interrupted = false;            // `stop` was raised: the checkpoint holds the state, no output
-    double seconds = 0;                  // wall time of this run's steps
-    double gpu_ms_per_iteration = 0;     // median GPU time of a step (Vulkan timestamps)
-    std::vector<StageTiming> stages;     // median GPU time of each pass
     uint64_t device_bytes = 0;           // the trainer's device memory
     std::vector<size_t> train_views, test_views;
     bool held_out = true;                // no test view was trained on (ViewSplit::held_out)
@@ -116,6 +105,6 @@ struct FinetuneResult {
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
                               const FinetuneOptions& options, const QualityProbe& quality = {},
-                              const std::function<void(const FinetuneStatus&)>& progress = {});
+                              const std::function<void(const train::LoopStatus&)>& progress = {});
 
 }  // namespace vksplat::jobs

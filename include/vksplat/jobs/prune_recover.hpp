@@ -50,6 +50,6 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
                                 const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options,
                                 const QualityProbe& quality = {},
-                                const std::function<void(int round, const FinetuneStatus&)>& progress = {});
+                                const std::function<void(int round, const train::LoopStatus&)>& progress = {});
 
 }  // namespace vksplat::jobs

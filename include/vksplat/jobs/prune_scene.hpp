@@ -81,7 +81,7 @@ struct PruneResult {
 struct PruneProgress {
     prune::Progress scoring;                                  // training views rendered
     std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
-    std::function<void(int round, const FinetuneStatus&)> refit;  // re-fit progress (recover)
+    std::function<void(int round, const train::LoopStatus&)> refit;  // re-fit progress (recover)
 };
 
 // Prunes `cloud`, seen from `cameras`, and writes the result to options.out. Refuses, before any

@@ -24,20 +24,16 @@
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/finetune.hpp"
+#include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"
+#include "vksplat/train/training_loop.hpp"
 
 namespace vksplat::jobs {
 
-struct TrainRecipe {
+// The reference schedule (train::ReferenceSchedule: SH degree, densification, opacity resets) and
+// the run's length and data choices.
+struct TrainRecipe : train::ReferenceSchedule {
     uint64_t iterations = 30000;
-    int sh_degree = 3;
-    uint64_t sh_degree_interval = 1000;
-    uint64_t densify_from = 500, densify_until = 15000, densify_interval = 100;
-    uint64_t opacity_reset_interval = 3000;
-    double opacity_reset_value = 0.01;
-    // Threshold 0.0002, percent dense 0.01, min opacity 0.005, no screen-size prune; prune_large is
-    // set by the loop after the first opacity reset.
-    train::DensifyRules densify;
     uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
     size_t random_points = 100000;      // NeRF-synthetic and INRIA starts
     float random_box = 1.3f;            // NeRF-synthetic start: uniform in [-box, box]^3
@@ -78,20 +74,11 @@ struct TrainOptions {
     std::function<void(const std::string&)> notice;
 };
 
-struct TrainStatus {
-    uint64_t iteration = 0, iterations = 0;
-    size_t gaussians = 0;
-    double loss = 0, psnr = 0, seconds = 0, seconds_left = 0;
-};
 
-struct TrainResult {
-    uint64_t iterations = 0, skipped = 0;
-    bool interrupted = false;
+// What the loop measured (train::LoopResult; its strategy_seconds is densification and opacity
+// resets), and:
+struct TrainResult : train::LoopResult {
     size_t gaussians = 0;
-    double seconds = 0;                 // wall time of this run's steps, densification included
-    double densify_seconds = 0;         // of which densification and opacity resets
-    double gpu_ms_per_iteration = 0;
-    uint64_t peak_device_bytes = 0;
     eval::Quality test;                // on the test views against the photos
     double scene_extent = 0;
     std::filesystem::path ply, cameras_json, metrics_json;
@@ -107,7 +94,7 @@ using TestMeasure = std::function<eval::Quality(const GaussianCloud&, const eval
 // InputError when steps keep being skipped for non-finite gradients (train::check_skipped_steps).
 TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
                         const TrainOptions& options, const TestMeasure& measure,
-                        const std::function<void(const TrainStatus&)>& progress = {});
+                        const std::function<void(const train::LoopStatus&)>& progress = {});
 
 // The Gaussians a memory budget leaves room for: the trainer's bytes per Gaussian (parameters,
 // gradients, moments, frame and per-splat buffers) against the budget less the per-pixel buffers.

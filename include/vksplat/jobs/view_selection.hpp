@@ -19,10 +19,6 @@ std::vector<size_t> parse_view_list(const std::string& text, size_t count);
 std::vector<size_t> default_test_views(const std::vector<Camera>& cameras);
 // Every camera that is not a test view; every camera when that leaves none.
 std::vector<size_t> default_train_views(size_t camera_count, const std::vector<size_t>& test_views);
-// The training view of step `iteration` (0-based): the reference walks a fresh random permutation
-// of the training views each epoch. Each epoch's permutation comes from the seed and the epoch
-// alone, so a resumed run continues the same order.
-size_t training_view(uint64_t iteration, uint64_t seed, const std::vector<size_t>& views);
 // Throws InputError naming the first index that is not below camera_count.
 void check_view_indices(const std::vector<size_t>& views, size_t camera_count);
 
