@@ -61,7 +61,7 @@ const uint CARRY_STOPPED = 0x80000000u;
 layout(constant_id = 0) const bool SUM_IN_SUBGROUP = true;
 
 void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
-    if (all(equal(uvec2(ivec2(floor(mean + 0.5))), pixel))) pc.stat_centre_weight.v[gaussian] = floatBitsToUint(weight);
+    if (all(equal(uvec2(ivec2(floor(mean + 0.5))), pixel))) pc.stats.stat_centre_weight.v[gaussian] = floatBitsToUint(weight);
     // True only where every invocation is active and at this splat (inactive ones set no bit).
     if (SUM_IN_SUBGROUP &&
         subgroupBallotBitCount(subgroupBallot(gaussian == subgroupBroadcastFirst(gaussian))) == gl_SubgroupSize) {
@@ -69,17 +69,17 @@ void record_stats(uint gaussian, float weight, vec2 mean, uvec2 pixel) {
         const uint max_bits = subgroupMax(floatBitsToUint(weight));
         const uint pixels = subgroupAdd(1u);
         if (subgroupElect()) {
-            if (weight_sum > 0.0) atomicAdd(pc.stat_weight.v[gaussian], uint64_t(weight_sum * WEIGHT_SCALE));
-            if (max_bits > 0u) atomicMax(pc.stat_max_weight.v[gaussian], max_bits);
-            atomicAdd(pc.stat_pixels.v[gaussian], pixels);
+            if (weight_sum > 0.0) atomicAdd(pc.stats.stat_weight.v[gaussian], uint64_t(weight_sum * WEIGHT_SCALE));
+            if (max_bits > 0u) atomicMax(pc.stats.stat_max_weight.v[gaussian], max_bits);
+            atomicAdd(pc.stats.stat_pixels.v[gaussian], pixels);
         }
         return;
     }
     if (weight > 0.0) {
-        atomicAdd(pc.stat_weight.v[gaussian], uint64_t(weight * WEIGHT_SCALE));
-        atomicMax(pc.stat_max_weight.v[gaussian], floatBitsToUint(weight));
+        atomicAdd(pc.stats.stat_weight.v[gaussian], uint64_t(weight * WEIGHT_SCALE));
+        atomicMax(pc.stats.stat_max_weight.v[gaussian], floatBitsToUint(weight));
     }
-    atomicAdd(pc.stat_pixels.v[gaussian], 1u);
+    atomicAdd(pc.stats.stat_pixels.v[gaussian], 1u);
 }
 #endif
 
@@ -136,21 +136,21 @@ void blend_splat(uint j, uint position, float alpha, vec4 color_depth, uvec2 pix
 }
 
 void main() {
-    const CameraParams cam = pc.camera.c;
+    const CameraParams cam = pc.blend.camera.c;
     const uvec2 tile_origin = gl_WorkGroupID.xy * uvec2(TILE_WIDTH, TILE_HEIGHT);
     const uvec2 pixel = tile_origin + pixel_in_tile(gl_LocalInvocationIndex);
     const uint my_block = block_of(gl_LocalInvocationIndex);
     const uint slot = batch_slot();
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
     const vec2 pixel_f = vec2(pixel);
-    const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
+    const uvec2 range = pc.blend.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
     PixelState state = PixelState(vec3(0.0), 1.0, 0.0, 0u, 0u, !inside);
 #if CARRY_STATE
-    if (inside && (pc.carry_flags & CARRY_LOAD) != 0u) {
+    if (inside && (pc.carry.carry_flags & CARRY_LOAD) != 0u) {
         const uint index = pixel.y * cam.size.x + pixel.x;
-        const vec4 carried = pc.carried_color.v[index];
-        const vec2 depth_count = pc.carried_depth_count.v[index];
+        const vec4 carried = pc.carry.carried_color.v[index];
+        const vec2 depth_count = pc.carry.carried_depth_count.v[index];
         const uint contributors = floatBitsToUint(depth_count.y);
         // A pixel that stopped stays stopped.
         state = PixelState(carried.rgb, carried.a, depth_count.x, contributors & ~CARRY_STOPPED, 0u,
@@ -166,13 +166,13 @@ void main() {
         if (state.done) atomicAdd(finished_pixels, 1u);
         uint touched = 0u;
         if (start + slot < range.y) {
-            const uint gaussian = pc.tile_values.v[start + slot];
-            const Footprint footprint = pc.footprints.v[gaussian];
+            const uint gaussian = pc.blend.tile_values.v[start + slot];
+            const Footprint footprint = pc.blend.footprints.v[gaussian];
             const vec2 mean = footprint_mean(footprint);
             const vec4 conic_opacity = footprint_conic_opacity(footprint);
             batch_mean[slot] = vec4(mean, 0.0, 0.0);
             batch_conic_opacity[slot] = conic_opacity;
-            batch_color_depth[slot] = pc.colors.v[gaussian];
+            batch_color_depth[slot] = pc.blend.colors.v[gaussian];
             touched = touched_blocks(mean, conic_opacity, tile_origin);
 #if GATHER_STATS
             batch_gaussian[slot] = gaussian;
@@ -204,20 +204,20 @@ void main() {
     if (inside) {
         const uint index = pixel.y * cam.size.x + pixel.x;
 #if CARRY_STATE
-        if ((pc.carry_flags & CARRY_LAST) == 0u) {
-            pc.carried_color.v[index] = vec4(state.color, state.transmittance);
-            pc.carried_depth_count.v[index] =
+        if ((pc.carry.carry_flags & CARRY_LAST) == 0u) {
+            pc.carry.carried_color.v[index] = vec4(state.color, state.transmittance);
+            pc.carry.carried_depth_count.v[index] =
                 vec2(state.depth_sum, uintBitsToFloat(state.contributors | (state.done ? CARRY_STOPPED : 0u)));
             return;
         }
 #endif
         const float alpha = 1.0 - state.transmittance;
-        pc.out_color_alpha.v[index] = vec4(state.color + state.transmittance * cam.background.rgb, alpha);
-        pc.out_depth.v[index] = alpha > 0.0 ? state.depth_sum / alpha : 0.0;
-        pc.out_contributors.v[index] = state.contributors;
+        pc.blend.out_color_alpha.v[index] = vec4(state.color + state.transmittance * cam.background.rgb, alpha);
+        pc.blend.out_depth.v[index] = alpha > 0.0 ? state.depth_sum / alpha : 0.0;
+        pc.blend.out_contributors.v[index] = state.contributors;
 #if TRAIN_OUTPUTS
-        pc.out_transmittance.v[index] = state.transmittance;
-        pc.out_last.v[index] = state.last;
+        pc.train.out_transmittance.v[index] = state.transmittance;
+        pc.train.out_last.v[index] = state.last;
 #endif
     }
 }

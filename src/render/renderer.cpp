@@ -169,65 +169,33 @@ void Renderer::Impl::record_tiles(gpu::CommandStream& stream, const render::Came
 
 void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y,
                                        bool gather_stats, const uint32_t* carry_flags) {
+    using namespace shader::render;
     auto& f = frame;
-    // Every variant's push starts with the plain blend's members (shaders/render/blend_push.h).
-    const shader::render::BlendPush plain{.camera = f.camera.address(),
-                                          .ranges = f.ranges.address(),
-                                          .tile_values = f.tile_values.address(),
-                                          .footprints = f.footprints.address(),
-                                          .colors = f.colors.address(),
-                                          .out_color_alpha = f.color_alpha.address(),
-                                          .out_depth = f.depth.address(),
-                                          .out_contributors = f.contributors.address()};
-    if (carry_flags && gather_stats) {
-        stream.dispatch(stats_carry_kernel(),
-                        {.camera = plain.camera,
-                         .ranges = plain.ranges,
-                         .tile_values = plain.tile_values,
-                         .footprints = plain.footprints,
-                         .colors = plain.colors,
-                         .out_color_alpha = plain.out_color_alpha,
-                         .out_depth = plain.out_depth,
-                         .out_contributors = plain.out_contributors,
-                         .stat_weight = f.stat_weight.address(),
-                         .stat_max_weight = f.stat_max_weight.address(),
-                         .stat_pixels = f.stat_pixels.address(),
-                         .stat_centre_weight = f.stat_centre_weight.address(),
-                         .carried_color = f.carried_color.address(),
-                         .carried_depth_count = f.carried_depth_count.address(),
-                         .carry_flags = *carry_flags},
-                        tiles_x, tiles_y);
-    } else if (carry_flags) {
-        stream.dispatch(carry_kernel(),
-                        {.camera = plain.camera,
-                         .ranges = plain.ranges,
-                         .tile_values = plain.tile_values,
-                         .footprints = plain.footprints,
-                         .colors = plain.colors,
-                         .out_color_alpha = plain.out_color_alpha,
-                         .out_depth = plain.out_depth,
-                         .out_contributors = plain.out_contributors,
-                         .carried_color = f.carried_color.address(),
-                         .carried_depth_count = f.carried_depth_count.address(),
-                         .carry_flags = *carry_flags},
-                        tiles_x, tiles_y);
+    // Every variant's push starts with the frame's buffers (shaders/render/blend.h).
+    const BlendFrame buffers{.camera = f.camera.address(),
+                             .ranges = f.ranges.address(),
+                             .tile_values = f.tile_values.address(),
+                             .footprints = f.footprints.address(),
+                             .colors = f.colors.address(),
+                             .out_color_alpha = f.color_alpha.address(),
+                             .out_depth = f.depth.address(),
+                             .out_contributors = f.contributors.address()};
+    const BlendStats stats{.stat_weight = f.stat_weight.address(),
+                           .stat_max_weight = f.stat_max_weight.address(),
+                           .stat_pixels = f.stat_pixels.address(),
+                           .stat_centre_weight = f.stat_centre_weight.address()};
+    if (carry_flags) {
+        const BlendCarry carry{.carried_color = f.carried_color.address(),
+                               .carried_depth_count = f.carried_depth_count.address(),
+                               .carry_flags = *carry_flags};
+        if (gather_stats)
+            stream.dispatch(stats_carry_kernel(), {.blend = buffers, .stats = stats, .carry = carry}, tiles_x, tiles_y);
+        else
+            stream.dispatch(carry_kernel(), {.blend = buffers, .carry = carry}, tiles_x, tiles_y);
     } else if (gather_stats) {
-        stream.dispatch(*blend_stats,
-                        {.camera = plain.camera,
-                         .ranges = plain.ranges,
-                         .tile_values = plain.tile_values,
-                         .footprints = plain.footprints,
-                         .colors = plain.colors,
-                         .out_color_alpha = plain.out_color_alpha,
-                         .out_depth = plain.out_depth,
-                         .out_contributors = plain.out_contributors,
-                         .stat_weight = f.stat_weight.address(),
-                         .stat_max_weight = f.stat_max_weight.address(),
-                         .stat_pixels = f.stat_pixels.address(),
-                         .stat_centre_weight = f.stat_centre_weight.address()},
-                        tiles_x, tiles_y);
+        stream.dispatch(*blend_stats, {.blend = buffers, .stats = stats}, tiles_x, tiles_y);
     } else
-        stream.dispatch(blend, plain, tiles_x, tiles_y);
+        stream.dispatch(blend, {.blend = buffers}, tiles_x, tiles_y);
     stream.barrier();
     stream.mark("blend");
 }
