@@ -2,7 +2,7 @@
 // Preprocess: one thread per Gaussian. Culls by the near plane, projects the 3D covariance to
 // 2D with the EWA Jacobian (clamped like the reference), adds the low-pass filter, inverts it to
 // the conic, bounds it by a 3-sigma radius and a tile rectangle, and evaluates the SH colour.
-// Mirrors preprocessCUDA of the reference rasterizer; constants come from constants.glsl.
+// Mirrors preprocessCUDA of the reference rasterizer; constants come from vksplat/constants.hpp.
 //
 // It also writes every Gaussian's depth-sort key: the view depth's bits for a drawn splat, and
 // NOT_DRAWN, which sorts after all of them, for the rest. The depth sort then takes all Gaussians

@@ -1,6 +1,6 @@
 #version 460
 // Adam (Kingma & Ba), as torch.optim.Adam steps the reference trainer's parameter groups: one
-// thread per parameter float, with the learning rate of its group (train_layout.glsl's blocks;
+// thread per parameter float, with the learning rate of its group (parameter_layout.h's blocks;
 // the SH block splits into the DC coefficient and the rest). Every parameter steps every
 // iteration, also with a zero gradient (the moments decay), as torch's dense Adam does. A step
 // whose status says a gradient was not finite, or the frame overflowed its tile entries, changes

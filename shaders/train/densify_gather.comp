@@ -1,6 +1,6 @@
 #version 460
 // Densification's data movement: the new scene's Gaussian j is a copy of the old scene's
-// Gaussian sources[j] (parameters and Adam's moments, every block of train_layout.glsl), with two
+// Gaussian sources[j] (parameters and Adam's moments, every block of parameter_layout.h), with two
 // exceptions the host's plan (src/train/densify.hpp) sets: Gaussians from fresh_from on are new,
 // so their moments start at zero, as the reference's optimizer state does; and split samples
 // (from split_from on) take the position and log-scale the host sampled for them. The host

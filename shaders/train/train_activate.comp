@@ -1,5 +1,5 @@
 #version 460
-// Activation: the trainer's raw parameters (train_layout.glsl) to the renderer's activated
+// Activation: the trainer's raw parameters (parameter_layout.h) to the renderer's activated
 // params (GpuScene): exp of the log-scales, sigmoid of the opacity logits, unit quaternions. The
 // same functions the host applies to a loaded scene (HostScene::activate), so a trained scene
 // renders the same through either path. preprocess_backward.comp differentiates them.

@@ -142,4 +142,15 @@ uint64_t FrameResources::device_bytes() const {
     return total;
 }
 
+shader::render::BlendFrame blend_frame(const FrameResources& f) {
+    return {.camera = f.camera.address(),
+            .ranges = f.ranges.address(),
+            .tile_values = f.tile_values.address(),
+            .footprints = f.footprints.address(),
+            .colors = f.colors.address(),
+            .out_color_alpha = f.color_alpha.address(),
+            .out_depth = f.depth.address(),
+            .out_contributors = f.contributors.address()};
+}
+
 }  // namespace vksplat::render

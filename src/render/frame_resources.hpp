@@ -7,6 +7,7 @@
 #include "gpu/buffer.hpp"
 #include "gpu/prefix_scan.hpp"
 #include "gpu/radix_sort.hpp"
+#include "shaders/render/blend.h"
 
 namespace vksplat::render {
 
@@ -15,7 +16,7 @@ struct FrameResources {
 
     // Per frame.
     gpu::Buffer camera;    // CameraParams
-    gpu::Buffer counters;  // Counter slots (frame.glsl)
+    gpu::Buffer counters;  // Counter slots (shaders/render/frame.h)
 
     // Per Gaussian (capacity gaussian_capacity).
     uint32_t gaussian_capacity = 0;
@@ -71,5 +72,8 @@ struct FrameResources {
     static uint64_t image_bytes(uint32_t pixels, uint32_t tiles, bool carry);
     static VkDeviceSize readback_bytes(uint32_t pixels);
 };
+
+// The frame's buffers as every blend variant reads and writes them (shaders/render/blend.h).
+shader::render::BlendFrame blend_frame(const FrameResources& frame);
 
 }  // namespace vksplat::render

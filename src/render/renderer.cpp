@@ -172,14 +172,7 @@ void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tile
     using namespace shader::render;
     auto& f = frame;
     // Every variant's push starts with the frame's buffers (shaders/render/blend.h).
-    const BlendFrame buffers{.camera = f.camera.address(),
-                             .ranges = f.ranges.address(),
-                             .tile_values = f.tile_values.address(),
-                             .footprints = f.footprints.address(),
-                             .colors = f.colors.address(),
-                             .out_color_alpha = f.color_alpha.address(),
-                             .out_depth = f.depth.address(),
-                             .out_contributors = f.contributors.address()};
+    const BlendFrame buffers = render::blend_frame(f);
     const BlendStats stats{.stat_weight = f.stat_weight.address(),
                            .stat_max_weight = f.stat_max_weight.address(),
                            .stat_pixels = f.stat_pixels.address(),

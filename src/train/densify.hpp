@@ -5,7 +5,8 @@
 // where small and split in two where large; the transparent, and (when asked) the oversized, are
 // removed. The host decides from a small download (plan_densify); DensifyPasses moves the
 // parameters and Adam's moments on the device by the plan (new Gaussians start with zero
-// moments, as the reference's optimizer state does) and resets opacities there.
+// moments, as the reference's optimizer state does) and resets opacities there
+// (shaders/train/densify_gather.comp, reset_opacity.comp; layouts in shaders/train/densify.h).
 #include <cstdint>
 #include <memory>
 #include <vector>

@@ -74,14 +74,7 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     binning_.record(stream, frame_, params, {render_params_.address(), scene.sh_address(), n});
     auto& f = frame_;
     stream.dispatch(*blend_,
-                    {.blend = {.camera = f.camera.address(),
-                               .ranges = f.ranges.address(),
-                               .tile_values = f.tile_values.address(),
-                               .footprints = f.footprints.address(),
-                               .colors = f.colors.address(),
-                               .out_color_alpha = f.color_alpha.address(),
-                               .out_depth = f.depth.address(),
-                               .out_contributors = f.contributors.address()},
+                    {.blend = render::blend_frame(f),
                      .train = {.out_transmittance = transmittance_.address(), .out_last = last_.address()}},
                     tiles_x_, tiles_y_);
     stream.barrier();

@@ -27,7 +27,7 @@ namespace {
 
 using namespace vksplat::constants;
 
-// Per splat: d/d mean (2), conic (3), opacity, colour (3): train_layout.glsl's SPLAT_GRAD_ order.
+// Per splat: d/d mean (2), conic (3), opacity, colour (3): shaders/train/parameter_layout.h's SPLAT_GRAD_ order.
 using SplatGrads = std::vector<std::array<double, 9>>;
 
 SplatGrads analytic_blend_backward(const std::vector<reference::ProjectedGaussian>& splats, const Camera& camera,

@@ -1,7 +1,7 @@
 #pragma once
 // Spherical-harmonics colour as the reference rasterizer evaluates it (graphdeco-inria
 // diff-gaussian-rasterization, forward.cu computeColorFromSH): the same constants, signs and band
-// order, in double precision. shaders/include/sh.glsl is the GPU's copy of the same formula.
+// order, in double precision. shaders/render/sh.glsl is the GPU's copy of the same formula.
 #include <array>
 
 #include <glm/glm.hpp>
