@@ -7,6 +7,8 @@
 
 SHADER_NAMESPACE_BEGIN(train)
 
+SHADER_CONST(uint, LOSS_TILE, 16)  // pixels per tile side = workgroup side: the host sizes the dispatch by it
+
 struct LossPush {
     Vec4s rendered;     // rgb, alpha unused
     Uints photo;        // RGBA8, r in the low byte; alpha 0 masks the pixel out

@@ -11,9 +11,9 @@
 #ifndef VKSPLAT_LOSS_WINDOW_GLSL
 #define VKSPLAT_LOSS_WINDOW_GLSL
 
-#include "shaders/common/buffers.h"
+#include "shaders/train/loss.h"
 
-const uint TILE = 16;                      // pixels per tile side = workgroup side
+const uint TILE = LOSS_TILE;               // pixels per tile side = workgroup side
 const int RADIUS = 5;                      // window 11 x 11
 const uint TAPS = 2 * RADIUS + 1;
 const uint SPAN = TILE + 2 * RADIUS;       // tile plus apron, per side

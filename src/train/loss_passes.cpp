@@ -10,7 +10,7 @@
 namespace vksplat::train {
 namespace {
 
-constexpr uint32_t kTile = 16;          // TILE of loss_window.glsl
+constexpr uint32_t kTile = shader::train::LOSS_TILE;
 constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the passes walk tiles in a grid-stride loop
 constexpr uint32_t kPlanes = 9;         // A, B, C per channel (loss_forward.comp)
 
