@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "support/gpu_fixture.hpp"
+#include "support/photos.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
@@ -22,15 +23,11 @@ class RecoverChecks : public GpuTest {
 protected:
     void SetUp() override {
         dir = fresh_test_dir("vksplat_recover_checks_");
-        fs::create_directories(dir / "photos");
         renderer = std::make_unique<Renderer>(context());
         cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
         cameras = row_of_five_views();
         renderer->set_scene(cloud);
-        for (const Camera& camera : cameras) {
-            const RenderOutput image = renderer->render(camera);
-            io::write_png_rgb(dir / "photos" / (camera.name + ".png"), image.width, image.height, image.rgb.data(), 8);
-        }
+        write_renders_as_photos(*renderer, cameras, dir / "photos");
     }
     void TearDown() override {
         fs::remove_all(dir);

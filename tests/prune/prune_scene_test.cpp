@@ -7,6 +7,7 @@
 #include <iterator>
 
 #include "support/gpu_fixture.hpp"
+#include "support/photos.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
@@ -163,14 +164,8 @@ TEST_F(PruneScene, SavedTotalsAndScoresRedoTheSelectionWithoutRendering) {
 }
 
 TEST_F(PruneScene, MeasuresAgainstPhotosAndWritesFewerShBands) {
-    fs::create_directories(dir / "photos");
-    for (const Camera& camera : cameras) {
-        const RenderOutput image = [&] {
-            renderer->set_scene(cloud);
-            return renderer->render(camera);
-        }();
-        io::write_png_rgb(dir / "photos" / (camera.name + ".png"), image.width, image.height, image.rgb.data(), 16);
-    }
+    renderer->set_scene(cloud);
+    write_renders_as_photos(*renderer, cameras, dir / "photos", 16);
     auto o = options(jobs::DropRatio{0.2}, "photos.ply");
     o.images_dir = dir / "photos";
     o.sh_degree = 1;
