@@ -3,7 +3,7 @@
 // benchmarks/photos_to_npy.py, since those hosts have no image codecs vksplat links.
 #include <filesystem>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/npy.hpp"

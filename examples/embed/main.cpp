@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include <vksplat/demo_scene.hpp>
+#include <vksplat/scene/demo_scene.hpp>
 #include <vksplat/render/renderer.hpp>
 
 namespace {

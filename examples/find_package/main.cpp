@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <exception>
 
-#include <vksplat/demo_scene.hpp>
+#include <vksplat/scene/demo_scene.hpp>
 #include <vksplat/io/formats.hpp>
 #include <vksplat/io/image.hpp>
 #include <vksplat/render/renderer.hpp>

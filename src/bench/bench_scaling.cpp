@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "vksplat/error.hpp"
-#include "vksplat/tiled_scene.hpp"
+#include "vksplat/scene/tiled_scene.hpp"
 
 namespace vksplat::bench {
 

@@ -1,7 +1,7 @@
 // Building cameras: from a viewpoint and a target, and for another image size.
 #include <cmath>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat {

@@ -1,4 +1,4 @@
-#include "vksplat/camera_controls.hpp"
+#include "vksplat/camera/camera_controls.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -32,19 +32,19 @@ CameraControls::CameraControls(const glm::dvec3& eye, const glm::dvec3& target, 
     yaw_ = std::atan2(glm::dot(f, across2_), glm::dot(f, across_));
 }
 
-CameraControls CameraControls::framing(const GaussianCloud& cloud, const glm::dvec3& up) {
+CameraControls CameraControls::framing(std::span<const float> positions, const glm::dvec3& up) {
     glm::dvec3 centre(0.0);
     double radius = 1.0;
-    if (!cloud.empty()) {
-        std::vector<double> axis(cloud.size());
+    const size_t count = positions.size() / 3;
+    if (count > 0) {
+        std::vector<double> axis(count);
         for (int a = 0; a < 3; ++a) {
-            for (size_t i = 0; i < cloud.size(); ++i) axis[i] = cloud.positions[3 * i + a];
+            for (size_t i = 0; i < count; ++i) axis[i] = positions[3 * i + a];
             centre[a] = stats::median(axis);
         }
-        std::vector<double> spread(cloud.size());
-        for (size_t i = 0; i < cloud.size(); ++i)
-            spread[i] = glm::length(glm::dvec3(cloud.positions[3 * i], cloud.positions[3 * i + 1],
-                                               cloud.positions[3 * i + 2]) - centre);
+        std::vector<double> spread(count);
+        for (size_t i = 0; i < count; ++i)
+            spread[i] = glm::length(glm::dvec3(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]) - centre);
         // The 90th percentile ignores far floaters; 0 for a single point still needs a distance.
         std::nth_element(spread.begin(), spread.begin() + long(spread.size() * 9 / 10), spread.end());
         radius = std::max(spread[spread.size() * 9 / 10], 1e-3);

@@ -1,5 +1,5 @@
 // The cameras' common focus (see camera_focus.hpp).
-#include "vksplat/camera_focus.hpp"
+#include "vksplat/camera/camera_focus.hpp"
 
 #include <algorithm>
 #include <cmath>

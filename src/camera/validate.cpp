@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <string>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat {

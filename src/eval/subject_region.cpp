@@ -4,7 +4,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "vksplat/camera_focus.hpp"
+#include "vksplat/camera/camera_focus.hpp"
 #include "vksplat/error.hpp"
 #include "stats/median.hpp"
 

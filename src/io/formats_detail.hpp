@@ -15,7 +15,7 @@
 #include <string_view>
 
 #include "vksplat/error.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::io::detail {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/camera/camera.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::jobs {
 

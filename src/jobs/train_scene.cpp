@@ -11,7 +11,7 @@
 #include "vksplat/io/output_folders.hpp"
 #include "jobs/run_checkpoint.hpp"
 #include "jobs/training_setup.hpp"
-#include "vksplat/camera_focus.hpp"
+#include "vksplat/camera/camera_focus.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/dataset.hpp"
 #include "vksplat/io/formats.hpp"

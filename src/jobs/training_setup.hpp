@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/jobs/finetune.hpp"
 
 namespace vksplat::jobs {

@@ -4,7 +4,7 @@
 
 #include <glm/glm.hpp>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/constants.hpp"
 
 namespace vksplat::reference {

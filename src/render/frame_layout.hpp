@@ -4,9 +4,9 @@
 #include <cstdint>
 
 #include "shaders/render/frame.h"
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render_types.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::render {
 

@@ -9,7 +9,7 @@
 
 #include "gpu/buffer.hpp"
 #include "vksplat/render/renderer.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::render {
 

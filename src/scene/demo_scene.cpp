@@ -1,4 +1,4 @@
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 
 #include <algorithm>
 #include <array>

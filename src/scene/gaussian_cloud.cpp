@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

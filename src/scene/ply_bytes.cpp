@@ -1,7 +1,7 @@
 // The size of the INRIA .ply a cloud saves to: the figure a user compares when pruning a scene.
 #include <string>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

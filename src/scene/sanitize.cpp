@@ -6,7 +6,7 @@
 #include <sstream>
 #include <string>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

@@ -1,4 +1,4 @@
-#include "vksplat/tiled_scene.hpp"
+#include "vksplat/scene/tiled_scene.hpp"
 
 #include <stdexcept>
 

@@ -6,7 +6,7 @@
 
 #include "train/parameter_layout.hpp"
 #include "vksplat/error.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::train {
 namespace {

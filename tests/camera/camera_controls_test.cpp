@@ -3,8 +3,8 @@
 #include <gtest/gtest.h>
 
 #include "support/scenes.hpp"
-#include "vksplat/camera_controls.hpp"
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/camera/camera_controls.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::test {
@@ -93,7 +93,7 @@ TEST(CameraControls, UpComesFromTheDatasetCameras) {
 
 TEST(CameraControls, FramingPutsTheSceneInTheMiddle) {
     const GaussianCloud scene = make_demo_scene();
-    const CameraControls controls = CameraControls::framing(scene, {0, 0, 1});
+    const CameraControls controls = CameraControls::framing(scene.positions, {0, 0, 1});
     const Camera view = controls.camera(100, 100);
     const glm::dvec2 at = project(view, controls.target());
     EXPECT_NEAR(at.x, 50, 1e-6);

@@ -4,7 +4,7 @@
 #include <cmath>
 
 #include "support/scenes.hpp"
-#include "vksplat/camera_focus.hpp"
+#include "vksplat/camera/camera_focus.hpp"
 
 namespace vksplat::test {
 namespace {

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat {

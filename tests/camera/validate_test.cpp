@@ -6,7 +6,7 @@
 #include <limits>
 #include <string>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat {

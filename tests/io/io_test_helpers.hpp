@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "vksplat/error.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::io::test {
 

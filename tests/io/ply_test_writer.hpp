@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::io::test {
 

@@ -10,7 +10,7 @@
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 #include "vksplat/io/npy.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/cluster_work_dir.hpp"

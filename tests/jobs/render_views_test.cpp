@@ -10,7 +10,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/npy.hpp"

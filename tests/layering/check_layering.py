@@ -15,12 +15,10 @@ import sys
 
 root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[2])
 
-# Headers directly under include/vksplat/ and the module each belongs to; None: shared by all.
-# render_types.hpp is the vocabulary both renderers speak (RenderSettings, RenderOutput): the
-# reference rasterizer uses its types and never RenderSettings::validate(), which render defines.
-TOP_LEVEL = {'scene': 'scene', 'demo_scene': 'scene', 'tiled_scene': 'scene', 'camera': 'camera',
-             'camera_controls': 'camera', 'camera_focus': 'camera', 'render_types': None,
-             'constants': None, 'error': None}
+# The headers directly under include/vksplat/ are every module's vocabulary, owned by none:
+# errors, the reference constants (glslang compiles them too), and render_types.hpp, which both
+# renderers speak (the reference rasterizer uses its types, never RenderSettings::validate()).
+TOP_LEVEL = {'render_types': None, 'constants': None, 'error': None}
 
 modules = {}  # module -> (target, links: set of targets)
 for cmake in sorted(root.glob('src/*/CMakeLists.txt')):

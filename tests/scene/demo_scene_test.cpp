@@ -1,5 +1,5 @@
 // The generated demo scene and the orbit cameras around it.
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 
 #include <gtest/gtest.h>
 

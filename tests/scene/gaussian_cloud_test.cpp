@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <vector>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

@@ -5,7 +5,7 @@
 
 #include "support/test_data.hpp"
 #include "vksplat/io/ply.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

@@ -5,7 +5,7 @@
 #include <limits>
 #include <vector>
 
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 namespace {

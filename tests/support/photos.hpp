@@ -4,7 +4,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::test {

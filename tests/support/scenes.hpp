@@ -5,8 +5,8 @@
 
 #include <glm/glm.hpp>
 
-#include "vksplat/camera.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/camera/camera.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::test {
 

@@ -10,7 +10,7 @@
 #include "vksplat/io/npy.hpp"
 #include "vksplat/bench/bench_report.hpp"
 #include "vksplat/jobs/view_selection.hpp"
-#include "vksplat/tiled_scene.hpp"
+#include "vksplat/scene/tiled_scene.hpp"
 
 namespace vksplat::cli {
 namespace {

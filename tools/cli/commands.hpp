@@ -8,7 +8,7 @@
 #include <string>
 
 #include "vksplat/gpu/context.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::cli {
 

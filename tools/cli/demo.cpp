@@ -6,7 +6,7 @@
 #include "commands.hpp"
 #include "number_checks.hpp"
 #include "progress.hpp"
-#include "vksplat/demo_scene.hpp"
+#include "vksplat/scene/demo_scene.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/render_views.hpp"
 

@@ -7,7 +7,7 @@
 
 #include "commands.hpp"
 #include "vksplat/io/formats.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::cli {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "glfw_window.hpp"
 #include "swapchain.hpp"
-#include "vksplat/camera_controls.hpp"
+#include "vksplat/camera/camera_controls.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -115,7 +115,7 @@ private:
     CameraControls start_controls(const GaussianCloud& cloud) const {
         const glm::dvec3 up = options_.up ? glm::dvec3((*options_.up)[0], (*options_.up)[1], (*options_.up)[2])
                                           : CameraControls::up_of(cameras_, {0, 0, 1});
-        return CameraControls::framing(cloud, up);
+        return CameraControls::framing(cloud.positions, up);
     }
 
     bool flying() const {

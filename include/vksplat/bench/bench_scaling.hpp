@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/bench/benchmark.hpp"
 #include "vksplat/render/renderer.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::bench {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::bench {

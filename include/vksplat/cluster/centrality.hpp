@@ -11,7 +11,7 @@
 #include <span>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 
 namespace vksplat::cluster {
 

@@ -48,7 +48,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/cluster/union_find.hpp"
 
 namespace vksplat::cluster {

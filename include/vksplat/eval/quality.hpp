@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::eval {

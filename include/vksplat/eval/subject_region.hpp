@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render_types.hpp"
 
 namespace vksplat::eval {

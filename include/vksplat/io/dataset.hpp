@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/io/sfm_points.hpp"
 #include "vksplat/io/write_mode.hpp"
 

@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "vksplat/io/write_mode.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::io {
 

@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/cluster/cluster_scores.hpp"
 #include "vksplat/cluster/projection.hpp"
 #include "vksplat/cluster/region_map.hpp"

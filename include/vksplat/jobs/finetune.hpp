@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/write_mode.hpp"

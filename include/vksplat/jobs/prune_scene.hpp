@@ -10,7 +10,7 @@
 #include <variant>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/jobs/view_selection.hpp"

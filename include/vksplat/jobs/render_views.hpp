@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/render/renderer.hpp"
 

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/eval/subject_region.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/render/renderer.hpp"

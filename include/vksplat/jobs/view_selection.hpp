@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 
 namespace vksplat::jobs {
 

@@ -10,7 +10,7 @@
 #include <functional>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::prune {

@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "vksplat/prune/accumulate.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::prune {
 

@@ -12,9 +12,9 @@
 
 #include <glm/glm.hpp>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render_types.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::reference {
 

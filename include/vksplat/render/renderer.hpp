@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/render/render_target.hpp"
 #include "vksplat/render_types.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 

@@ -20,7 +20,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/cluster_prune.hpp"
 #include "vksplat/prune/scores.hpp"

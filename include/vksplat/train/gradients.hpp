@@ -5,10 +5,10 @@
 // host from the picture) to reach the parameters.
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/render_types.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::train {
 

@@ -6,7 +6,7 @@
 #include <cstdint>
 
 #include "vksplat/io/sfm_points.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat::train {
 

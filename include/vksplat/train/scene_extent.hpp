@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 
 namespace vksplat::train {
 

@@ -16,11 +16,11 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/render/renderer.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/scene/scene.hpp"
 #include "vksplat/train/checkpoint.hpp"
 
 namespace vksplat::io {

@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"

@@ -5,9 +5,10 @@
 #include <glm/glm.hpp>
 
 #include <optional>
+#include <span>
+#include <vector>
 
-#include "vksplat/camera.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/camera/camera.hpp"
 
 namespace vksplat {
 
@@ -18,9 +19,10 @@ public:
     // Looking from `eye` at `target`; `up` is the world's up direction (need not be unit length).
     // Throws InputError if eye and target coincide or up is zero.
     CameraControls(const glm::dvec3& eye, const glm::dvec3& target, const glm::dvec3& up);
-    // Looks at the bulk of a scene (its median point) from far enough to see most of it, from
-    // 25 degrees above its horizon.
-    static CameraControls framing(const GaussianCloud& cloud, const glm::dvec3& up);
+    // Looks at the bulk of a scene, given as its points' positions (x, y, z per point, as
+    // GaussianCloud::positions holds them), at their median from far enough to see most of
+    // them, from 25 degrees above its horizon.
+    static CameraControls framing(std::span<const float> positions, const glm::dvec3& up);
     // The world's up as a set of dataset cameras agree on it (the mean of their picture-up
     // directions); `fallback` when there are none or they cancel out.
     static glm::dvec3 up_of(const std::vector<Camera>& cameras, const glm::dvec3& fallback);

@@ -4,7 +4,7 @@
 #include <optional>
 #include <vector>
 
-#include "vksplat/camera.hpp"
+#include "vksplat/camera/camera.hpp"
 
 namespace vksplat {
 

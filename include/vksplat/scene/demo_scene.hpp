@@ -1,8 +1,8 @@
 #pragma once
 // A small scene made by code, for examples, benchmarks and tests that need no data files, and
 // cameras that orbit it.
-#include "vksplat/camera.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/camera/camera.hpp"
+#include "vksplat/scene/scene.hpp"
 
 #include <cstddef>
 #include <cstdint>

@@ -1,7 +1,7 @@
 #pragma once
 // The large benchmark scene of ../shared/data/README.md: copies of a scene on a grid.
-#include "vksplat/camera.hpp"
-#include "vksplat/scene.hpp"
+#include "vksplat/camera/camera.hpp"
+#include "vksplat/scene/scene.hpp"
 
 namespace vksplat {
 
