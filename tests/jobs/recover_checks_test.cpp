@@ -19,20 +19,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class RecoverChecks : public GpuTest {
+class RecoverChecks : public PhotographedScene {
 protected:
-    void SetUp() override {
-        dir = fresh_test_dir("vksplat_recover_checks_");
-        renderer = std::make_unique<Renderer>(context());
-        cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
-        cameras = row_of_five_views();
-        renderer->set_scene(cloud);
-        write_renders_as_photos(*renderer, cameras, dir / "photos");
-    }
-    void TearDown() override {
-        fs::remove_all(dir);
-        GpuTest::TearDown();
-    }
+    RecoverChecks() : PhotographedScene("vksplat_recover_checks_") {}
+
     // Views 0 and 1 held out: the photos of 2-4 are read by the re-fit alone.
     jobs::PruneOptions recover_options() const {
         jobs::PruneOptions o;
@@ -59,10 +49,6 @@ protected:
         ADD_FAILURE() << "not refused";
         return {};
     }
-    fs::path dir;
-    std::unique_ptr<Renderer> renderer;
-    GaussianCloud cloud;
-    std::vector<Camera> cameras;
     bool scored = false;
 };
 

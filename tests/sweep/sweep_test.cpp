@@ -54,20 +54,10 @@ std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
     return rows;
 }
 
-class Sweep : public GpuTest {
+class Sweep : public PhotographedScene {
 protected:
-    void SetUp() override {
-        dir = fresh_test_dir("vksplat_sweep_");
-        renderer = std::make_unique<Renderer>(context());
-        cloud = random_scene(71, 500, 2, 3.0f, 8.0f, 0.01f, 0.3f, 1.5f);
-        cameras = row_of_five_views();
-        renderer->set_scene(cloud);
-        write_renders_as_photos(*renderer, cameras, dir / "photos");
-    }
-    void TearDown() override {
-        fs::remove_all(dir);
-        GpuTest::TearDown();
-    }
+    Sweep() : PhotographedScene("vksplat_sweep_") {}
+
     // A quick sweep: one timed frame per model on one view.
     sweep::SweepOptions options(const fs::path& out) const {
         sweep::SweepOptions o;
@@ -79,10 +69,6 @@ protected:
         o.scene_label = "random_scene(71)";
         return o;
     }
-    fs::path dir;
-    std::unique_ptr<Renderer> renderer;
-    GaussianCloud cloud;
-    std::vector<Camera> cameras;
 };
 
 TEST(SweepHelpers, FractionsViewsAndBestMethod) {
