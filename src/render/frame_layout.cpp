@@ -1,8 +1,12 @@
 #include "render/frame_layout.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
+#include <string>
 
 #include "vksplat/constants.hpp"
+#include "vksplat/error.hpp"
 
 namespace vksplat::render {
 namespace {
@@ -14,6 +18,11 @@ uint32_t tiles_down(uint32_t height) { return (height + constants::kTileHeight -
 
 ImageExtent image_extent(const Camera& camera) {
     const auto width = static_cast<uint32_t>(camera.width), height = static_cast<uint32_t>(camera.height);
+    // A frame indexes its pixels with 32 bits: past that the count would wrap (65536^2 to 0) and a
+    // frame be sized for none of them.
+    if (uint64_t(width) * height > std::numeric_limits<uint32_t>::max())
+        throw InputError("camera '" + camera.name + "'", "its " + std::to_string(width) + "x" + std::to_string(height) +
+                                                             " image has more pixels than a frame can index (2^32)");
     return {width * height, tiles_across(width) * tiles_down(height)};
 }
 
