@@ -17,22 +17,25 @@ size_t round_target(size_t n, size_t target, int round, int rounds) {
 
 namespace {
 
-// The iterations of each round; throws InputError for options no round can run with.
-uint64_t iterations_per_round(const RecoverOptions& options) {
+// Throws InputError for options no round can run with.
+void check_rounds(const RecoverOptions& options) {
     if (options.rounds < 1) throw InputError("--rounds " + std::to_string(options.rounds), "must be 1 or more");
     if (options.rounds > 1 && options.finetune.resume)
         throw InputError("--resume", "continues one re-fit; it cannot resume a run of several rounds");
-    const uint64_t per_round = options.iterations / uint64_t(options.rounds);
-    if (per_round == 0)
+    if (options.iterations < uint64_t(options.rounds))
         throw InputError("--recover " + std::to_string(options.iterations),
                          "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
-    return per_round;
 }
 
 }  // namespace
 
+uint64_t round_iterations(uint64_t iterations, int round, int rounds) {
+    const auto n = uint64_t(rounds), r = uint64_t(round);
+    return iterations / n + (r <= iterations % n ? 1 : 0);
+}
+
 void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos) {
-    iterations_per_round(options);
+    check_rounds(options);
     const FinetuneOptions& finetune = options.finetune;
     for (size_t view : split_views(cameras, finetune.test_views, finetune.train_views).train)
         checked_photo(photos, cameras[view]);
@@ -42,8 +45,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
                                 const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
                                 const std::function<void(int round, const train::LoopStatus&)>& progress) {
+    check_rounds(options);
     FinetuneOptions finetune = options.finetune;
-    finetune.iterations = iterations_per_round(options);
     const std::vector<size_t> train = split_views(cameras, finetune.test_views, finetune.train_views).train;
     RenderSettings settings;
     settings.background = finetune.train.background;
@@ -56,6 +59,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         done.kept = model.size();
         // Only the last round's model is measured: the others are intermediate.
         const bool last = round == options.rounds;
+        finetune.iterations = round_iterations(options.iterations, round, options.rounds);
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
                                     [&](const train::LoopStatus& s) {
                                         if (progress) progress(round, s);

@@ -12,6 +12,7 @@
 #include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
+#include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
 
 namespace vksplat::test {
@@ -80,6 +81,32 @@ TEST_F(RecoverChecks, OptionsBeforeScoring) {
     const std::string budget_rounds = refusal(budget);
     EXPECT_NE(budget_rounds.find("--rounds 3"), std::string::npos) << budget_rounds;
     EXPECT_FALSE(scored) << "refused only after scoring";
+}
+
+// --recover N re-fits N iterations in all, however many rounds share them (50 over 3 rounds was
+// 3 x 16 = 48).
+TEST(RoundIterations, AddUpToTheIterationsAskedFor) {
+    EXPECT_EQ(jobs::round_iterations(50, 1, 3), 17u);
+    EXPECT_EQ(jobs::round_iterations(50, 2, 3), 17u);
+    EXPECT_EQ(jobs::round_iterations(50, 3, 3), 16u);
+    for (const auto& [iterations, rounds] : {std::pair<uint64_t, int>{5000, 3}, {7, 7}, {10, 1}, {101, 4}}) {
+        uint64_t sum = 0;
+        for (int round = 1; round <= rounds; ++round) sum += jobs::round_iterations(iterations, round, rounds);
+        EXPECT_EQ(sum, iterations) << iterations << " over " << rounds;
+    }
+}
+
+TEST_F(RecoverChecks, TheRoundsTakeExactlyTheIterationsAskedFor) {
+    auto options = recover_options();
+    options.recover->iterations = 7;
+    options.recover->rounds = 2;
+    uint64_t steps = 0;
+    jobs::PruneProgress progress;
+    progress.refit = [&](int, const train::LoopStatus& s) {
+        if (s.iteration == s.iterations) steps += s.iterations;
+    };
+    jobs::prune_scene(*renderer, cloud, cameras, options, progress);
+    EXPECT_EQ(steps, 7u);
 }
 
 }  // namespace

@@ -17,7 +17,7 @@ namespace vksplat::jobs {
 // three rounds, each re-fit decaying the position rate from its initial to its final value. At
 // 80% of lego dropped that loses 1.69 dB where one round at the final rate loses 2.85.
 struct RecoverOptions {
-    uint64_t iterations = 5000;   // re-fit iterations in all, split evenly over the rounds
+    uint64_t iterations = 5000;   // re-fit iterations in all, split over the rounds (round_iterations)
     int rounds = 3;
     prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
@@ -37,6 +37,9 @@ struct RecoverResult {
 
 // The kept count of round r (1-based) of `rounds` from n Gaussians down to `target`: n (target/n)^(r/rounds).
 size_t round_target(size_t n, size_t target, int round, int rounds);
+// The re-fit iterations of round r (1-based): `iterations` split as evenly as whole steps allow,
+// the first rounds taking one more where they do not divide, so that the rounds add up to it.
+uint64_t round_iterations(uint64_t iterations, int round, int rounds);
 
 // What prune_and_recover would refuse, found without its work: rounds < 1, a resume of several
 // rounds, no iterations per round, and a missing or mis-sized photo of a training view (each read
