@@ -6,6 +6,7 @@ include(CMakePackageConfigHelpers)
 set(VKSPLAT_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/vksplat)
 
 install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/vksplat TYPE INCLUDE)
+install(FILES ${PROJECT_BINARY_DIR}/generated_include/vksplat/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/vksplat)
 install(TARGETS vksplat EXPORT vksplatTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
 if(TARGET vksplat_cli)
   install(TARGETS vksplat_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})

@@ -10,7 +10,10 @@
 # libvksplat.a, what applications link (vksplat::vksplat, pkg-config), holds every module's objects.
 
 add_library(vksplat_headers INTERFACE)
-target_include_directories(vksplat_headers INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>)
+# vksplat/version.hpp is generated from the project's version, beside the written headers.
+configure_file(${PROJECT_SOURCE_DIR}/cmake/version.hpp.in ${PROJECT_BINARY_DIR}/generated_include/vksplat/version.hpp)
+target_include_directories(vksplat_headers INTERFACE $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+                                                     $<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/generated_include>)
 target_link_libraries(vksplat_headers INTERFACE glm::glm Vulkan::Headers)
 target_compile_features(vksplat_headers INTERFACE cxx_std_20)
 

@@ -9,6 +9,7 @@
 #include <vksplat/io/formats.hpp>
 #include <vksplat/io/image.hpp>
 #include <vksplat/render/renderer.hpp>
+#include <vksplat/version.hpp>
 
 int main(int argc, char** argv) {
     if (argc != 3 && argc != 5) {
@@ -31,8 +32,8 @@ int main(int argc, char** argv) {
         double coverage = 0;
         for (float a : image.alpha) coverage += a;
         coverage /= double(image.alpha.size());
-        std::printf("rendered %zu Gaussians on %s: %.1f%% of the image covered, wrote %s\n", renderer.scene_size(),
-                    context.info().name.c_str(), coverage * 100, argv[2]);
+        std::printf("vksplat %s: rendered %zu Gaussians on %s: %.1f%% of the image covered, wrote %s\n",
+                    vksplat::kVersion, renderer.scene_size(), context.info().name.c_str(), coverage * 100, argv[2]);
         return coverage > 0.01 ? 0 : 1;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

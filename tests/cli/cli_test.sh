@@ -31,6 +31,7 @@ expect demo-refuses-overwrite any-failure "exists" -- "$vksplat" demo --out "$wo
 expect info 0 "Gaussians: 38605" -- "$vksplat" info "$work/demo/demo.ply"
 expect devices 0 "subgroup" -- "$vksplat" devices
 expect help-has-example 0 "Example:" -- "$vksplat" render --help
+expect version 0 "vksplat 0.1.0" -- "$vksplat" --version
 
 # One INRIA camera above the demo scene looking down.
 cat >"$work/cameras.json" <<'JSON'

@@ -1,10 +1,14 @@
 // vksplat: render and compact 3D Gaussian Splatting scenes with Vulkan compute.
+#include <string>
+
 #include "commands.hpp"
+#include "vksplat/version.hpp"
 
 int main(int argc, char** argv) {
     using namespace vksplat::cli;
     CLI::App app{"vksplat: render and compact 3D Gaussian Splatting scenes with Vulkan compute"};
     app.footer("Example:\n  vksplat demo --out demo_out\n  vksplat render scene.ply --cameras cameras.json --out renders");
+    app.set_version_flag("--version", std::string("vksplat ") + vksplat::kVersion);
     app.require_subcommand(1);
     Action action;
     register_devices(app, action);
