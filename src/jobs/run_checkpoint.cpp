@@ -21,13 +21,15 @@ std::optional<train::CheckpointHeader> check_run_checkpoint(const RunFiles& file
                                "file, --force or not (name a new one)");
     if (resume) {
         if (!header) throw InputError(name, "no checkpoint to resume from");
-        train::check_checkpoint_owner(path, header->owner, owner);
+        train::check_checkpoint_owner(path, *header, owner);
         io::check_writable(path, io::WriteMode::overwrite);
         return header;
     }
     if (header && mode == io::WriteMode::refuse_existing)
         throw InputError(name, "holds iteration " + std::to_string(header->iteration) + " of an earlier run (" +
-                                   header->owner.source + "); --resume continues it, --force starts over and replaces it");
+                                   header->owner.source + "); " +
+                                   (header->records_run ? "--resume continues it, " : "it cannot be resumed; ") +
+                                   "--force starts over and replaces it");
     io::check_writable(path, io::WriteMode::overwrite);
     return std::nullopt;
 }

@@ -12,7 +12,7 @@ namespace vksplat::train {
 namespace {
 
 constexpr char kMagic[8] = {'V', 'K', 'S', 'C', 'K', 'P', 'T', '2'};
-// The first format, without an owner or densification sums: recognised so that it is named.
+// The first format, without an owner or densification sums: recognised, never resumed.
 constexpr char kMagicV1[8] = {'V', 'K', 'S', 'C', 'K', 'P', 'T', '1'};
 // Longer owner strings are not ones vksplat wrote: a corrupt length must not allocate gigabytes.
 constexpr uint64_t kMaxOwnerText = 1 << 20;
@@ -60,24 +60,26 @@ bool read_header(Reader& reader, const std::filesystem::path& path, CheckpointDa
     } catch (const InputError&) {
         return false;  // shorter than a magic: some other small file
     }
-    if (std::memcmp(magic, kMagicV1, sizeof(magic)) == 0)
-        throw InputError(path.string(), "is a checkpoint of an older vksplat, which recorded neither the run it "
-                                        "belongs to nor the densification state; it cannot be resumed safely "
-                                        "(--force starts over and replaces it)");
-    if (std::memcmp(magic, kMagic, sizeof(magic)) != 0) return false;
-    data.count = reader.number("header");
+    CheckpointHeader& header = data.header;
+    header.records_run = std::memcmp(magic, kMagic, sizeof(magic)) == 0;
+    if (!header.records_run && std::memcmp(magic, kMagicV1, sizeof(magic)) != 0) return false;
+    header.gaussians = reader.number("header");
     data.sh_degree = reader.number("header");
-    data.iteration = reader.number("header");
+    header.iteration = reader.number("header");
     data.skipped = reader.number("header");
-    if (data.count == 0 || data.count > std::numeric_limits<uint32_t>::max() || data.sh_degree > 3)
-        throw InputError(path.string(), "checkpoint header is corrupt (count " + std::to_string(data.count) +
+    if (header.gaussians == 0 || header.gaussians > std::numeric_limits<uint32_t>::max() || data.sh_degree > 3)
+        throw InputError(path.string(), "checkpoint header is corrupt (count " + std::to_string(header.gaussians) +
                                             ", SH degree " + std::to_string(data.sh_degree) + ")");
-    data.owner.source = reader.text("owner");
+    if (!header.records_run) {
+        header.owner.source = "an older vksplat";
+        return true;
+    }
+    header.owner.source = reader.text("owner");
     const uint64_t fields = reader.number("owner");
     if (fields > 64) throw InputError(path.string(), "checkpoint is corrupt (its owner)");
     for (uint64_t i = 0; i < fields; ++i) {
         std::string name = reader.text("owner");
-        data.owner.fields.emplace_back(std::move(name), reader.text("owner"));
+        header.owner.fields.emplace_back(std::move(name), reader.text("owner"));
     }
     return true;
 }
@@ -87,10 +89,12 @@ bool read_header(Reader& reader, const std::filesystem::path& path, CheckpointDa
 void write_checkpoint(const std::filesystem::path& path, const CheckpointData& data, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) {
         out.write(kMagic, sizeof(kMagic));
-        for (uint64_t value : {data.count, data.sh_degree, data.iteration, data.skipped}) put_number(out, value);
-        put_text(out, data.owner.source);
-        put_number(out, data.owner.fields.size());
-        for (const auto& [name, value] : data.owner.fields) {
+        const CheckpointHeader& header = data.header;
+        for (uint64_t value : {header.gaussians, data.sh_degree, header.iteration, data.skipped})
+            put_number(out, value);
+        put_text(out, header.owner.source);
+        put_number(out, header.owner.fields.size());
+        for (const auto& [name, value] : header.owner.fields) {
             put_text(out, name);
             put_text(out, value);
         }
@@ -99,18 +103,20 @@ void write_checkpoint(const std::filesystem::path& path, const CheckpointData& d
     });
 }
 
-CheckpointData read_checkpoint(const std::filesystem::path& path) {
+CheckpointData read_checkpoint(const std::filesystem::path& path, const CheckpointOwner& expected) {
     Reader reader(path);
     if (!reader.opened()) throw InputError(path.string(), "cannot open the checkpoint");
     CheckpointData data;
     if (!read_header(reader, path, data)) throw InputError(path.string(), "not a vksplat training checkpoint");
+    check_checkpoint_owner(path, data.header, expected);
+    const uint64_t count = data.header.gaussians;
     const uint64_t floats =
-        ParameterLayout{uint32_t(data.count), uint32_t(sh_coefficients_for_degree(int(data.sh_degree)))}.total();
+        ParameterLayout{uint32_t(count), uint32_t(sh_coefficients_for_degree(int(data.sh_degree)))}.total();
     for (auto* array : {&data.params, &data.first_moment, &data.second_moment}) {
         array->resize(floats);
         reader.bytes(array->data(), floats * sizeof(float), "parameters");
     }
-    data.densify_sums.resize(data.count * kDensifyStride);
+    data.densify_sums.resize(count * kDensifyStride);
     reader.bytes(data.densify_sums.data(), data.densify_sums.size() * sizeof(float), "densification sums");
     return data;
 }
@@ -121,11 +127,16 @@ std::optional<CheckpointHeader> read_checkpoint_header(const std::filesystem::pa
     Reader reader(path);
     CheckpointData data;
     if (!read_header(reader, path, data)) return std::nullopt;
-    return CheckpointHeader{data.count, data.iteration, std::move(data.owner)};
+    return std::move(data.header);
 }
 
-void check_checkpoint_owner(const std::filesystem::path& path, const CheckpointOwner& found,
+void check_checkpoint_owner(const std::filesystem::path& path, const CheckpointHeader& checkpoint,
                             const CheckpointOwner& expected) {
+    if (!checkpoint.records_run)
+        throw InputError(path.string(), "is a checkpoint of an older vksplat, which recorded neither the run it "
+                                        "belongs to nor the densification state; it cannot be resumed safely "
+                                        "(--force starts over and replaces it)");
+    const CheckpointOwner& found = checkpoint.owner;
     const auto value_of = [](const CheckpointOwner& owner, const std::string& name) -> std::string {
         for (const auto& [key, value] : owner.fields)
             if (key == name) return value;

@@ -15,14 +15,15 @@
 namespace vksplat::train {
 
 struct CheckpointData {
-    uint64_t count = 0, sh_degree = 0, iteration = 0, skipped = 0;
-    CheckpointOwner owner;
+    CheckpointHeader header;
+    uint64_t sh_degree = 0, skipped = 0;
     std::vector<float> params, first_moment, second_moment, densify_sums;
 };
 
 // Through io::write_file_atomically: an interrupted write leaves the previous checkpoint whole.
 void write_checkpoint(const std::filesystem::path& path, const CheckpointData& data, io::WriteMode mode);
-// Throws InputError naming the file if it is not a checkpoint of this format or is cut short.
-CheckpointData read_checkpoint(const std::filesystem::path& path);
+// Throws InputError naming the file if it is not a checkpoint, is cut short, or may not be resumed
+// by the run `expected` (check_checkpoint_owner, before any array is read).
+CheckpointData read_checkpoint(const std::filesystem::path& path, const CheckpointOwner& expected);
 
 }  // namespace vksplat::train

@@ -224,29 +224,27 @@ uint64_t Trainer::device_bytes() const {
 void Trainer::save_checkpoint(const std::filesystem::path& path, io::WriteMode mode) const {
     const auto& d = *impl_;
     CheckpointData data;
-    data.count = d.scene.layout.count;
+    data.header = {.gaussians = d.scene.layout.count, .iteration = d.iteration, .owner = d.options.checkpoint_owner};
     data.sh_degree = uint64_t(d.scene.sh_degree);
-    data.iteration = d.iteration;
     data.skipped = d.skipped;
-    data.owner = d.options.checkpoint_owner;
     const uint64_t floats = d.scene.layout.total();
     data.params = gpu::read_buffer<float>(d.context, d.scene.params, floats);
     data.first_moment = gpu::read_buffer<float>(d.context, d.scene.first_moment, floats);
     data.second_moment = gpu::read_buffer<float>(d.context, d.scene.second_moment, floats);
-    data.densify_sums = gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(data.count) * kDensifyStride);
+    data.densify_sums =
+        gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(d.scene.layout.count) * kDensifyStride);
     write_checkpoint(path, data, mode);
 }
 
 void Trainer::Impl::load_checkpoint(const std::filesystem::path& path) {
-    const CheckpointData data = read_checkpoint(path);
-    check_checkpoint_owner(path, data.owner, options.checkpoint_owner);
-    const auto count = static_cast<uint32_t>(data.count);
+    const CheckpointData data = read_checkpoint(path, options.checkpoint_owner);
+    const auto count = static_cast<uint32_t>(data.header.gaussians);
     const int degree = int(data.sh_degree);
     const GaussianCloud first = unpack_parameters(data.first_moment, count, degree);
     const GaussianCloud second = unpack_parameters(data.second_moment, count, degree);
     scene = TrainableScene::upload(context, unpack_parameters(data.params, count, degree), &first, &second);
     scene.restore_densify_sums(context, data.densify_sums);
-    iteration = data.iteration;
+    iteration = data.header.iteration;
     skipped = data.skipped;
     report.input_count = count;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/io_test_helpers.hpp"
+#include "support/first_format_checkpoint.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/io/ply.hpp"
@@ -113,6 +114,20 @@ TEST_F(Finetune, AnEarlierCheckpointIsContinuedOnlyByItsOwnRunAndReplacedOnlyWhe
     again.mode = io::WriteMode::overwrite;
     EXPECT_EQ(run(truth, again).iterations, 4u);
     EXPECT_EQ(train::read_checkpoint_header(options.checkpoint)->iteration, 4u);
+}
+
+// A checkpoint of the first format, which recorded no run, is never resumed, and --force replaces
+// it as it replaces any earlier run's checkpoint.
+TEST_F(Finetune, AFirstFormatCheckpointIsReplacedOnlyWhenAskedAndNeverResumed) {
+    write_first_format_checkpoint(options.checkpoint, truth.size(), 42);
+    expect_input_error([&] { run(truth, options); }, {"holds iteration 42", "cannot be resumed", "--force"});
+    auto resume = options;
+    resume.resume = true;
+    expect_input_error([&] { run(truth, resume); }, {"run.checkpoint", "older vksplat"});
+    auto again = options;
+    again.mode = io::WriteMode::overwrite;
+    EXPECT_EQ(run(truth, again).iterations, 4u);
+    EXPECT_TRUE(train::read_checkpoint_header(options.checkpoint)->records_run);
 }
 
 // Gaussians stretched to the sanitiser's largest log-scale along one axis overflow the backward

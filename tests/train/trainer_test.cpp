@@ -9,6 +9,7 @@
 
 #include "support/gpu_fixture.hpp"
 #include "io/io_test_helpers.hpp"
+#include "support/first_format_checkpoint.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
@@ -175,7 +176,7 @@ TEST_F(Trainer, ACheckpointResumesTheSameState) {
     { std::ofstream(bad) << "VKSCKPT2 but short"; }
     EXPECT_THROW(train::Trainer(context(), bad, {}), InputError);
     // The first format recorded neither its run nor the densification sums: named, not resumed.
-    { std::ofstream(bad) << "VKSCKPT1 and the rest of an old checkpoint"; }
+    write_first_format_checkpoint(bad, 20, 5);
     expect_input_error([&] { train::Trainer(context(), bad, {}); }, {bad.string(), "older vksplat"});
     std::filesystem::remove(bad);
 }

@@ -25,16 +25,19 @@ struct CheckpointHeader {
     uint64_t gaussians = 0;
     uint64_t iteration = 0;  // steps taken when it was written
     CheckpointOwner owner;
+    // False for the first format, which recorded neither its run nor the densification sums: it
+    // is recognised (and may be replaced) but never resumed.
+    bool records_run = true;
 };
 
 // nullopt when `path` holds no vksplat checkpoint (no such file, or a file of another kind);
-// throws InputError naming the file when it is a checkpoint of an older, unrecorded format or its
-// header is cut short.
+// throws InputError naming the file when its header is cut short or corrupt.
 std::optional<CheckpointHeader> read_checkpoint_header(const std::filesystem::path& path);
 
-// Throws InputError naming the checkpoint, the first field that differs and both runs' sources
-// when `found` (read from the checkpoint at `path`) is not `expected`.
-void check_checkpoint_owner(const std::filesystem::path& path, const CheckpointOwner& found,
+// Throws InputError naming the checkpoint at `path` when `found` may not be resumed by the run
+// `expected`: a checkpoint of the first format, or one whose owner differs (the first field that
+// does, with both runs' values and the checkpoint's source).
+void check_checkpoint_owner(const std::filesystem::path& path, const CheckpointHeader& found,
                             const CheckpointOwner& expected);
 
 }  // namespace vksplat::train
