@@ -111,9 +111,10 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     data.folder = data_dir;
     // Where the data names no split (an INRIA file without "split"), INRIA's convention: the first
     // 13 cameras are held out, and a dozen cameras or fewer are all test and all training views.
-    data.test_views = default_test_views(data.cameras);
-    if (!data.cameras.empty() && data.test_views.size() == data.cameras.size() && !data.cameras.front().split.empty())
+    // A split naming every camera a test view leaves nothing to train on.
+    if (std::all_of(data.cameras.begin(), data.cameras.end(), [](const Camera& c) { return c.split == "test"; }))
         throw InputError(data_dir.string(), "every camera is a test view (\"split\"): nothing is left to train on");
+    data.test_views = default_test_views(data.cameras);
     data.train_views = default_train_views(data.cameras.size(), data.test_views);
     if (data.train_views.empty()) throw InputError(data_dir.string(), "has no training views");
     data.held_out = views_held_out(data.test_views, data.train_views);

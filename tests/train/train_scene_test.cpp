@@ -242,7 +242,7 @@ TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {
 TEST(TrainingData, AnInriaFolderIsSplitByItsSplitFields) {
     const fs::path dir = fresh_test_dir("train_scene_inria_split");
     fs::create_directories(dir / "images");
-    const auto write = [&](bool with_split) {
+    const auto write = [&](bool with_split, bool first_only = false) {
         std::ofstream out(dir / "cameras.json");
         out << "[";
         for (int i = 0; i < 4; ++i) {
@@ -250,7 +250,8 @@ TEST(TrainingData, AnInriaFolderIsSplitByItsSplitFields) {
             out << (i ? "," : "") << "{\"id\": " << i << ", \"img_name\": \"v" << i << "\", \"width\": 32, \"height\": 24, "
                 << "\"position\": [" << 4 * std::sin(angle) << ", 0, " << -4 * std::cos(angle) << "], "
                 << "\"rotation\": [[1, 0, 0], [0, 1, 0], [0, 0, 1]], \"fx\": 30, \"fy\": 30";
-            if (with_split) out << ", \"split\": \"" << (i % 2 ? "test" : "train") << "\"";
+            if (with_split && (!first_only || i == 0))
+                out << ", \"split\": \"" << (i % 2 ? "test" : "train") << "\"";
             out << "}";
         }
         out << "]";
@@ -265,6 +266,11 @@ TEST(TrainingData, AnInriaFolderIsSplitByItsSplitFields) {
     EXPECT_EQ(data.initial.size(), 100u);
     // Without split fields, fewer than 13 cameras are all test and all training views.
     write(false);
+    data = jobs::load_training_data(dir, recipe, 1.0, 0);
+    EXPECT_EQ(data.test_views.size(), 4u);
+    EXPECT_EQ(data.train_views.size(), 4u);
+    // A split on some cameras only is no split: the same convention, not a refusal.
+    write(true, true);
     data = jobs::load_training_data(dir, recipe, 1.0, 0);
     EXPECT_EQ(data.test_views.size(), 4u);
     EXPECT_EQ(data.train_views.size(), 4u);
