@@ -24,8 +24,7 @@ PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std:
         // The size is checked before resizing, as load_training_data scaled the camera: a photo of
         // another shape would otherwise be stretched to fit and trained on, distorted.
         const auto scaled = [&](int size) { return std::max(1, int(std::lround(size * resolution_scale))); };
-        if (scaled(image.width) != camera.width || scaled(image.height) != camera.height)
-        {
+        if (scaled(image.width) != camera.width || scaled(image.height) != camera.height) {
             std::ostringstream message;
             message << "is " << image.width << 'x' << image.height << ", which a resolution scale of "
                     << resolution_scale << " makes " << scaled(image.width) << 'x' << scaled(image.height)

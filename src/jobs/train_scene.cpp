@@ -148,16 +148,15 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     };
     // Every output checked before anything slow: none may be an input (-o DATA would replace its
     // cameras.json), none is replaced unless asked for or resuming, the folder must take files.
-    for (const auto& path : {result.ply, result.cameras_json, result.metrics_json, fs::absolute(checkpoint)})
-        io::refuse_input_as_output(path, data.inputs);
+    const std::vector<fs::path> outputs = {result.ply, result.cameras_json, result.metrics_json};
+    for (const auto& path : outputs) io::refuse_input_as_output(path, data.inputs);
     io::OutputFolders folders;  // removed again if the run is refused before it writes
     folders.create(options.out_dir);
-    for (const auto& path : {result.ply, result.cameras_json, result.metrics_json})
-        io::check_writable(path, options.resume ? io::WriteMode::overwrite : options.mode);
+    for (const auto& path : outputs) io::check_writable(path, options.resume ? io::WriteMode::overwrite : options.mode);
     train::TrainOptions train_options;
     train_options.checkpoint_owner = training_owner(data, options);
-    const auto resumed = check_run_checkpoint({checkpoint, data.inputs, {result.ply, result.cameras_json, result.metrics_json}},
-                                              train_options.checkpoint_owner, options.resume, options.mode);
+    const auto resumed = check_run_checkpoint({checkpoint, data.inputs, outputs}, train_options.checkpoint_owner,
+                                              options.resume, options.mode);
     if (!data.held_out) notice(kTestViewsTrainedOnWarning);
 
     const std::map<size_t, train::Photo> train_photos = training_photos(photos, data.cameras, data.train_views);
