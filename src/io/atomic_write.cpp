@@ -6,6 +6,7 @@
 #include <random>
 #include <system_error>
 
+#include "io/output_checks.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::io {
@@ -49,7 +50,7 @@ void commit(const fs::path& temporary, const fs::path& path, WriteMode mode) {
 }  // namespace
 
 void write_file_atomically(const fs::path& path, WriteMode mode, const std::function<void(std::ostream&)>& write) {
-    check_writable(path, mode);
+    check_destination(path, mode);  // the temporary file below tests that the folder takes files
     const fs::path temporary = temporary_sibling(path);
     try {
         {

@@ -7,8 +7,8 @@
 #include <cstring>
 #include <system_error>
 
+#include "io/output_checks.hpp"
 #include "vksplat/error.hpp"
-#include "vksplat/io/write_mode.hpp"
 
 namespace vksplat::io {
 namespace fs = std::filesystem;
@@ -19,7 +19,7 @@ bool same_file(const fs::path& a, const fs::path& b) {
     return fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
 }
 
-void check_writable(const fs::path& path, WriteMode mode) {
+void check_destination(const fs::path& path, WriteMode mode) {
     std::error_code error;
     if (fs::is_directory(path, error)) throw InputError(path.string(), "is a folder; a file name is needed");
     if (mode == WriteMode::refuse_existing && fs::exists(path, error))
@@ -27,6 +27,11 @@ void check_writable(const fs::path& path, WriteMode mode) {
     const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     if (!fs::is_directory(folder, error))
         throw InputError(path.string(), "cannot be written: folder " + folder.string() + " does not exist");
+}
+
+void check_writable(const fs::path& path, WriteMode mode) {
+    check_destination(path, mode);
+    const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
     // A file made and removed again: the only answer that holds for root, ACLs, read-only mounts
     // and file systems that refuse new files (access() says yes to root in /sys).
     std::string probe = (folder / ".vksplat-write-probe-XXXXXX").string();

@@ -20,9 +20,10 @@ enum class WriteMode {
 void write_file_atomically(const std::filesystem::path& path, WriteMode mode,
                            const std::function<void(std::ostream&)>& write);
 
-// What write_file_atomically checks before it writes, for commands to call before any work, so
-// that minutes of work never end in a refusal: throws InputError naming `path` if it exists and
-// mode is refuse_existing, if it is a folder, or if its folder is missing or not writable.
+// What write_file_atomically would refuse, for commands to call before any work, so that minutes
+// of work never end in a refusal: throws InputError naming `path` if it exists and mode is
+// refuse_existing, if it is a folder, or if its folder is missing or takes no new file (tried by
+// making and removing one).
 void check_writable(const std::filesystem::path& path, WriteMode mode);
 
 // Whether two paths name one file: the same inode where both exist (links, "./a" and "a"), else
