@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <fstream>
+#include <optional>
 #include <string>
 
 #include "vksplat/error.hpp"
@@ -49,7 +50,7 @@ std::array<int, 2> jpeg_size(std::ifstream& in, const std::string& where) {
 
 }  // namespace
 
-std::array<int, 2> read_image_size(const std::filesystem::path& path) {
+std::optional<std::array<int, 2>> header_image_size(const std::filesystem::path& path) {
     const std::string where = path.string();
     std::ifstream in(path, std::ios::binary);
     if (!in) throw InputError(where, "cannot open the image");
@@ -62,13 +63,20 @@ std::array<int, 2> read_image_size(const std::filesystem::path& path) {
         static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1A, '\n'};
         in.read(reinterpret_cast<char*>(head) + 2, 22);
         if (in.gcount() != 22 || !std::equal(kPng, kPng + 8, head) || std::string(head + 12, head + 16) != "IHDR")
-            throw InputError(where, "not a PNG or JPEG image (only their sizes can be read without decoding)");
+            return std::nullopt;
         size = {int(big_endian(head + 16, 4)), int(big_endian(head + 20, 4))};
     }
     if (size[0] <= 0 || size[1] <= 0 || size[0] > 1 << 20 || size[1] > 1 << 20)
         throw InputError(where, "image header gives an impossible size " + std::to_string(size[0]) + "x" +
                                     std::to_string(size[1]));
     return size;
+}
+
+std::array<int, 2> read_image_size(const std::filesystem::path& path) {
+    const auto size = header_image_size(path);
+    if (!size)
+        throw InputError(path.string(), "not a PNG or JPEG image (only their sizes can be read without decoding)");
+    return *size;
 }
 
 }  // namespace vksplat::io

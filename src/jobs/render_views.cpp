@@ -1,7 +1,5 @@
 #include "vksplat/jobs/render_views.hpp"
 
-#include <algorithm>
-#include <cctype>
 #include <cstdio>
 #include <set>
 
@@ -48,11 +46,8 @@ void refuse_other_size(const fs::path& photo_path, int width, int height, const 
 // PNG and JPEG photos are measured from their headers before the first render, so that a photo of
 // the wrong size is refused before any view is written; other formats are checked when decoded.
 void check_photo_size_early(const fs::path& photo_path, const Camera& camera) {
-    std::string extension = photo_path.extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(), [](unsigned char c) { return std::tolower(c); });
-    if (extension != ".png" && extension != ".jpg" && extension != ".jpeg") return;
-    const auto [width, height] = io::read_image_size(photo_path);
-    refuse_other_size(photo_path, width, height, camera);
+    if (const auto size = io::header_image_size(photo_path))
+        refuse_other_size(photo_path, (*size)[0], (*size)[1], camera);
 }
 
 void score_against_photo(ViewResult& view, const RenderOutput& image, const Camera& camera,

@@ -135,6 +135,17 @@ TEST(ImageSize, ReadFromPngAndJpegHeaders) {
     EXPECT_EQ(read_image_size(dir / "c.jpg"), (std::array<int, 2>{517, 301}));
 }
 
+// Told by content, not by name; other formats have no size short of decoding.
+TEST(ImageSize, FromTheHeaderWhereThereIsOne) {
+    ScratchDir dir;
+    const std::vector<float> rgb = ramp(13, 7, 3);
+    write_png_rgb(dir / "png_named.jpg", 13, 7, rgb.data(), 8);
+    EXPECT_EQ(header_image_size(dir / "png_named.jpg"), (std::array<int, 2>{13, 7}));
+    const cv::Mat pixels(9, 11, CV_8UC3, cv::Scalar(10, 200, 30));
+    ASSERT_TRUE(cv::imwrite((dir / "c.bmp").string(), pixels));
+    EXPECT_FALSE(header_image_size(dir / "c.bmp").has_value());
+}
+
 TEST(ImageSize, Errors) {
     ScratchDir dir;
     expect_input_error([&] { read_image_size(dir / "none.png"); }, {"none.png", "cannot open"});

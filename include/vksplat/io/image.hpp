@@ -2,6 +2,7 @@
 // Photos and renders as float RGB in [0, 1], read and written through OpenCV.
 #include <array>
 #include <filesystem>
+#include <optional>
 #include <vector>
 
 #include "vksplat/io/write_mode.hpp"
@@ -23,6 +24,9 @@ ImageRGB read_image_rgb(const std::filesystem::path& path, const std::array<floa
 // Width and height of a PNG or JPEG from its header, without decoding the pixels. Throws
 // InputError naming the file for anything else, a truncated header or an impossible size.
 std::array<int, 2> read_image_size(const std::filesystem::path& path);
+// The same where the file is a PNG or JPEG (told by its content, not its name); nullopt for any
+// other format, whose size only decoding tells.
+std::optional<std::array<int, 2>> header_image_size(const std::filesystem::path& path);
 
 // Writes a PNG of 8 or 16 bits per channel. Values are clamped to [0, 1] (NaN becomes 0) and
 // rounded to the nearest level.
