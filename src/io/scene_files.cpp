@@ -1,6 +1,7 @@
 // Picks a scene reader or writer by format name or by the file's extension.
 #include <algorithm>
 #include <cctype>
+#include <optional>
 
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
@@ -12,6 +13,7 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr const char* kSupportedExtensions = ".ply, .splat, .spz, .pt, .pth";
+constexpr const char* kWritableExtensions = ".ply, .compressed.ply, .splat, .spz";
 
 std::string lowercase(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -24,15 +26,27 @@ std::string format_list() {
     return list;
 }
 
+// The format `path`'s extension names, if any.
+std::optional<std::string> format_by_extension(const fs::path& path) {
+    const std::string extension = lowercase(path.extension().string());
+    if (extension == ".ply")
+        return lowercase(path.stem().extension().string()) == ".compressed" ? "compressed-ply" : "ply";
+    if (extension == ".splat") return "splat";
+    if (extension == ".spz") return "spz";
+    if (extension == ".pt" || extension == ".pth") return "gsplat-pt";
+    return std::nullopt;
+}
+
+bool is_ply(const std::string& format) { return format == "ply" || format == "compressed-ply"; }
+
+bool is_writable(const std::string& format) { return format != "gsplat-pt"; }
+
 }  // namespace
 
 std::string scene_format_named(const fs::path& path, const std::string& format) {
     if (format.empty()) {
+        if (const auto named = format_by_extension(path)) return *named;
         const std::string extension = lowercase(path.extension().string());
-        if (extension == ".ply") return "ply";
-        if (extension == ".splat") return "splat";
-        if (extension == ".spz") return "spz";
-        if (extension == ".pt" || extension == ".pth") return "gsplat-pt";
         throw InputError(path.string(), (extension.empty() ? std::string("has no extension")
                                                            : "unknown scene file extension '" + extension + "'") +
                                             "; supported: " + kSupportedExtensions + " (or name the format: " +
@@ -45,28 +59,43 @@ std::string scene_format_named(const fs::path& path, const std::string& format) 
     return name;
 }
 
-std::vector<std::string> scene_formats() { return {"ply", "compressed-ply", "splat", "spz", "gsplat-pt"}; }
+std::vector<std::string> scene_formats() {
+    return {"ply", "compressed-ply", "splat", "spz", "spz-v3", "gsplat-pt"};
+}
 
 std::string scene_format_of(const fs::path& path) {
     const std::string format = scene_format_named(path);
-    if (format == "ply" && fs::exists(path) && is_compressed_ply(path)) return "compressed-ply";
+    if (is_ply(format) && fs::exists(path)) return is_compressed_ply(path) ? "compressed-ply" : "ply";
     return format;
 }
 
 GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, std::string format) {
+    // A .ply's header, not its name, tells the flavours apart; an explicit "compressed-ply" is obeyed.
     std::string name = scene_format_named(path, format);
-    if (name == "ply" && fs::exists(path) && is_compressed_ply(path)) name = "compressed-ply";
+    if (is_ply(name) && (format.empty() || name == "ply") && fs::exists(path))
+        name = is_compressed_ply(path) ? "compressed-ply" : "ply";
     if (name == "ply") return read_ply(path, notes);
     if (name == "compressed-ply") return read_compressed_ply(path, notes);
     if (name == "splat") return read_splat(path, notes);
-    if (name == "spz") return read_spz(path, notes);
+    if (name == "spz" || name == "spz-v3") return read_spz(path, notes);
     return read_gsplat_checkpoint(path, notes);
 }
 
 std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
+    const std::string writable = std::string("; the scene formats vksplat writes are ") + kWritableExtensions +
+                                 " (or by name: ply, compressed-ply, splat, spz, spz-v3)";
+    if (format.empty()) {
+        const auto named = format_by_extension(path);
+        const std::string extension = path.extension().string();
+        if (!named)
+            throw InputError(path.string(), "cannot write a scene as " +
+                                                (extension.empty() ? std::string("a file without an extension")
+                                                                   : "'" + extension + "'") +
+                                                writable);
+    }
     const std::string name = scene_format_named(path, format);
-    if (name != "ply" && name != "splat" && name != "spz")
-        throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here (writable: ply, splat, spz)");
+    if (!is_writable(name))
+        throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here" + writable);
     check_writable(path, mode);
     return name;
 }
@@ -74,8 +103,9 @@ std::string check_scene_writable(const fs::path& path, WriteMode mode, const std
 void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mode, std::string format) {
     const std::string name = check_scene_writable(path, mode, format);
     if (name == "ply") return write_ply(cloud, path, mode);
+    if (name == "compressed-ply") return write_compressed_ply(cloud, path, mode);
     if (name == "splat") return write_splat(cloud, path, mode);
-    return write_spz(cloud, path, mode);
+    return write_spz(cloud, path, mode, name == "spz-v3" ? 3 : 4);
 }
 
 }  // namespace vksplat::io

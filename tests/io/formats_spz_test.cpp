@@ -1,5 +1,5 @@
-// Niantic SPZ: files built byte by byte decode as the specification says (versions 2 and 3), a
-// written cloud reads back within SPZ's quantisation, the fixture made by splat-transform decodes to
+// Niantic SPZ: files built byte by byte decode as the specification says (versions 2, 3 and 4), a
+// written cloud (version 4 by default, 3 on request) reads back within SPZ's quantisation, the fixture made by splat-transform decodes to
 // what splat-transform decoded, and malformed files are refused with a useful message.
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 
 #include "io/formats_detail.hpp"
 #include "io/io_test_helpers.hpp"
+#include "io/zstd_frames.hpp"
 #include "support/test_data.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/ply.hpp"
@@ -133,6 +134,128 @@ TEST(FormatsSpz, UncompressedStreamIsAccepted) {
     EXPECT_EQ(read_spz(dir / "plain.spz").positions, (std::vector<float>{1, -2, -3}));
 }
 
+// Version 4 around `attributes` (the blocks of version 3, back to back, of `sizes` bytes each): the
+// 32-byte header, `extensions`, the table of contents and one zstd frame per non-empty block.
+std::string v4_file(uint32_t count, uint8_t sh_degree, const std::string& attributes, std::vector<size_t> sizes,
+                    const std::string& extensions = "", uint8_t flags = 0) {
+    std::string bytes = spz_header(4, count, sh_degree, 12, flags | (extensions.empty() ? 0 : 0x2));
+    std::vector<std::string> frames;
+    std::vector<size_t> stream_sizes;
+    size_t offset = 0;
+    for (size_t size : sizes) {
+        if (size) frames.push_back(detail::zstd_compress(attributes.substr(offset, size), 3, "test"));
+        if (size) stream_sizes.push_back(size);
+        offset += size;
+    }
+    bytes[15] = static_cast<char>(frames.size());
+    append(bytes, static_cast<uint32_t>(32 + extensions.size()));
+    bytes.resize(32, '\0');
+    bytes += extensions;
+    for (size_t f = 0; f < frames.size(); ++f) {
+        append(bytes, static_cast<uint64_t>(frames[f].size()));
+        append(bytes, static_cast<uint64_t>(stream_sizes[f]));
+    }
+    for (const auto& frame : frames) bytes += frame;
+    return bytes;
+}
+
+// Two splats of SH degree 1 as version 3/4 attribute blocks, and the blocks' sizes.
+std::string two_splats_attributes() {
+    std::string raw = fixed24(1.5, 12) + fixed24(-2.25, 12) + fixed24(3, 12);
+    raw += fixed24(-4, 12) + fixed24(5, 12) + fixed24(0.5, 12);
+    raw += block({255, 51}) + block({128, 0, 255, 64, 191, 38}) + block({160, 0, 255, 100, 101, 102});
+    append(raw, 3u << 30);
+    append(raw, (0u << 30) | (511u << 20) | ((1u << 9 | 100u) << 10) | 0u);
+    for (int i = 0; i < 2 * 9; ++i) raw += static_cast<char>(i * 14);
+    return raw;
+}
+const std::vector<size_t> kTwoSplatsBlocks = {18, 2, 6, 6, 8, 18};
+
+std::string extension_record(uint32_t type, const std::string& payload) {
+    std::string bytes;
+    append(bytes, type);
+    append(bytes, static_cast<uint32_t>(payload.size()));
+    return bytes + payload;
+}
+
+std::string u32_bytes(uint32_t value) {
+    std::string bytes;
+    append(bytes, value);
+    return bytes;
+}
+
+TEST(FormatsSpz, Version4DecodesAsVersion3Does) {
+    ScratchDir dir;
+    const std::string attributes = two_splats_attributes();
+    write_bytes(dir / "v3.spz", gzip(spz_header(3, 2, 1) + attributes));
+    write_bytes(dir / "v4.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks));
+    const GaussianCloud v4 = read_spz(dir / "v4.spz");
+    expect_same_cloud(v4, read_spz(dir / "v3.spz"));
+    EXPECT_EQ(std::vector<float>(v4.positions.begin(), v4.positions.begin() + 3), (std::vector<float>{1.5f, 2.25f, -3}));
+    EXPECT_EQ(read_scene(dir / "v4.spz").size(), 2u);
+}
+
+TEST(FormatsSpz, Version4CoordinateSystemExtensionIsHonoured) {
+    ScratchDir dir;
+    const std::string attributes = two_splats_attributes();
+    write_bytes(dir / "plain.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks));
+    const GaussianCloud rub = read_spz(dir / "plain.spz");
+    // Declared RUB is the default; RDF is the cloud's own axes: nothing turns.
+    write_bytes(dir / "rub.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks, extension_record(0xADBE0003, u32_bytes(4))));
+    expect_same_cloud(read_spz(dir / "rub.spz"), rub);
+    write_bytes(dir / "rdf.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks, extension_record(0xADBE0003, u32_bytes(6))));
+    const GaussianCloud rdf = read_spz(dir / "rdf.spz");
+    EXPECT_EQ(std::vector<float>(rdf.positions.begin(), rdf.positions.begin() + 3), (std::vector<float>{1.5f, -2.25f, 3}));
+    EXPECT_EQ(rdf.rotations[6], -rub.rotations[6]);
+    EXPECT_EQ(rdf.sh[3], -rub.sh[3]);  // degree 1, basis y: odd in the turn
+    EXPECT_EQ(rdf.sh[9], rub.sh[9]);   // basis x: even
+    // Any other system is refused; other extensions are skipped with a note.
+    write_bytes(dir / "ruf.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks, extension_record(0xADBE0003, u32_bytes(8))));
+    expect_input_error([&] { read_spz(dir / "ruf.spz"); }, {"ruf.spz", "coordinate system 8", "RUB (4) and RDF (6)"});
+    write_bytes(dir / "other.spz",
+                v4_file(2, 1, attributes, kTwoSplatsBlocks, extension_record(0x12340001, "abc") +
+                                                                extension_record(0xADBE0002, std::string(12, '\0'))));
+    std::vector<std::string> notes;
+    expect_same_cloud(read_spz(dir / "other.spz", &notes), rub);
+    ASSERT_EQ(notes.size(), 2u);
+    EXPECT_NE(notes[0].find("ignored SPZ extension 0x12340001"), std::string::npos) << notes[0];
+    EXPECT_NE(notes[1].find("SPZ_ADOBE_safe_orbit_camera"), std::string::npos) << notes[1];
+    write_bytes(dir / "cut.spz", v4_file(2, 1, attributes, kTwoSplatsBlocks, extension_record(0x12340001, "abc").substr(0, 9)));
+    expect_input_error([&] { read_spz(dir / "cut.spz"); }, {"cut.spz", "extension 0x12340001", "says 3 bytes"});
+}
+
+TEST(FormatsSpzErrors, MalformedVersion4IsRefused) {
+    ScratchDir dir;
+    const std::string attributes = two_splats_attributes();
+    const std::string good = v4_file(2, 1, attributes, kTwoSplatsBlocks);
+    const auto refuse = [&](const std::string& name, const std::string& bytes, const std::vector<std::string>& parts) {
+        write_bytes(dir / name, bytes);
+        std::vector<std::string> expected = parts;
+        expected.insert(expected.begin(), name);
+        expect_input_error([&] { read_spz(dir / name); }, expected);
+    };
+    refuse("header.spz", good.substr(0, 20), {"truncated", "32 bytes"});
+    refuse("long.spz", good + "x", {"1 bytes follow the last attribute stream"});
+    refuse("cut.spz", good.substr(0, good.size() - 3), {"truncated", "attribute stream 5"});
+    std::string streams = good;
+    streams[15] = 5;
+    refuse("streams.spz", streams, {"5 attribute streams", "which are 6"});
+    std::string toc = good;
+    std::memset(toc.data() + 16, 0xff, 4);
+    refuse("toc.spz", toc, {"table of contents starts at byte 4294967295"});
+    // The count disagrees with the streams' sizes: refused before anything is allocated for it.
+    std::string count = good;
+    const uint32_t huge = 0xffffffffu;
+    std::memcpy(count.data() + 8, &huge, 4);
+    refuse("count.spz", count, {"attribute stream 0 holds 18 bytes", "4294967295 splats"});
+    // A frame that holds fewer bytes than its table entry says.
+    refuse("short.spz", v4_file(2, 1, attributes.substr(0, attributes.size() - 1), {18, 2, 6, 6, 8, 17}),
+           {"attribute stream 5 holds 17 bytes", "18 of them"});
+    std::string corrupt = good;
+    corrupt[32 + 6 * 16] ^= 0x5a;  // the first frame's magic
+    refuse("corrupt.spz", corrupt, {"attribute stream 0", "corrupt compressed data (zstd"});
+}
+
 // A cloud whose values SPZ can hold: DC within its colour range, log scales within [-10, 5.9],
 // SH within [-1, 1).
 GaussianCloud representable_cloud(size_t count, int sh_degree, unsigned seed) {
@@ -173,19 +296,39 @@ void expect_within_spz_quantisation(const GaussianCloud& original, const Gaussia
     }
 }
 
+// Both versions hold the same values: positions to half of 1/4096, log scales to 1/32, DC to half of
+// 1/(0.15 * 255), SH to 1/256, opacity to 0.5/255 after the sigmoid, rotations to 0.003 a component.
 TEST(FormatsSpz, RoundTripWithinQuantisation) {
     ScratchDir dir;
-    for (int degree = 0; degree <= 3; ++degree) {
-        const GaussianCloud original = representable_cloud(300, degree, 11 + degree);
-        const auto path = dir / ("scene" + std::to_string(degree) + ".spz");
-        write_spz(original, path);
-        const std::string bytes = read_bytes(path);
-        ASSERT_GE(bytes.size(), 2u);
-        EXPECT_EQ(static_cast<uint8_t>(bytes[0]), 0x1f);  // gzip
-        EXPECT_EQ(static_cast<uint8_t>(bytes[1]), 0x8b);
-        const GaussianCloud back = read_spz(path);
-        expect_within_spz_quantisation(original, back, 1.0 / 4096);
-    }
+    for (int version : {3, 4})
+        for (int degree = 0; degree <= 3; ++degree) {
+            const GaussianCloud original = representable_cloud(300, degree, 11 + degree);
+            const auto path = dir / ("scene" + std::to_string(version) + std::to_string(degree) + ".spz");
+            write_spz(original, path, WriteMode::refuse_existing, version);
+            const std::string bytes = read_bytes(path);
+            ASSERT_GE(bytes.size(), 32u);
+            if (version == 3) {
+                EXPECT_EQ(static_cast<uint8_t>(bytes[0]), 0x1f);  // gzip
+                EXPECT_EQ(static_cast<uint8_t>(bytes[1]), 0x8b);
+            } else {
+                EXPECT_EQ(bytes.substr(0, 4), "NGSP");
+                EXPECT_EQ(bytes[4], 4);
+                EXPECT_EQ(bytes[15], degree ? 6 : 5);  // attribute streams: no SH stream at degree 0
+            }
+            const GaussianCloud back = read_spz(path);
+            expect_within_spz_quantisation(original, back, 1.0 / 4096);
+        }
+}
+
+TEST(FormatsSpz, WriterWritesVersion4UnlessAskedFor3) {
+    ScratchDir dir;
+    const GaussianCloud cloud = representable_cloud(5, 1, 3);
+    write_spz(cloud, dir / "default.spz");
+    EXPECT_EQ(read_bytes(dir / "default.spz").substr(0, 5), std::string("NGSP\x04"));
+    write_scene(cloud, dir / "named.spz", WriteMode::refuse_existing, "spz-v3");
+    EXPECT_EQ(static_cast<uint8_t>(read_bytes(dir / "named.spz")[0]), 0x1f);
+    expect_input_error([&] { write_spz(cloud, dir / "v2.spz", WriteMode::refuse_existing, 2); },
+                       {"v2.spz", "cannot write SPZ version 2"});
 }
 
 TEST(FormatsSpz, WriterUsesFewerFractionalBitsForLargeScenes) {
@@ -193,12 +336,9 @@ TEST(FormatsSpz, WriterUsesFewerFractionalBitsForLargeScenes) {
     GaussianCloud original = representable_cloud(20, 1, 5);
     original.positions[7] = 30000.0f;  // needs 15 integer bits: at most 8 fractional
     write_spz(original, dir / "large.spz");
-    const std::string compressed = read_bytes(dir / "large.spz");
-    detail::Inflater inflater(compressed, detail::Inflater::Wrapping::gzip, "large.spz");
-    std::string header;
-    inflater.read(header, 16);
+    const std::string header = read_bytes(dir / "large.spz");
     EXPECT_EQ(static_cast<int>(header[13]), 8);
-    EXPECT_EQ(static_cast<int>(header[4]), 3);  // version 3
+    EXPECT_EQ(static_cast<int>(header[4]), 4);  // version 4: the header is not compressed
     expect_within_spz_quantisation(original, read_spz(dir / "large.spz"), 1.0 / 256);
 }
 
@@ -241,13 +381,17 @@ TEST(FormatsSpzErrors, WrongMagic) {
 
 TEST(FormatsSpzErrors, WrongVersion) {
     ScratchDir dir;
-    for (uint32_t version : {0u, 1u, 4u, 77u}) {
+    for (uint32_t version : {0u, 1u, 77u}) {
         std::string raw = valid_raw(2);
         std::memcpy(raw.data() + 4, &version, 4);
         write_bytes(dir / "version.spz", gzip(raw));
         expect_input_error([&] { read_spz(dir / "version.spz"); },
-                           {"version.spz", "unsupported SPZ version " + std::to_string(version), "2 and 3"});
+                           {"version.spz", "unsupported SPZ version " + std::to_string(version), "2, 3 and 4"});
     }
+    std::string raw = valid_raw(2);
+    raw[4] = 4;
+    write_bytes(dir / "gzipped4.spz", gzip(raw));
+    expect_input_error([&] { read_spz(dir / "gzipped4.spz"); }, {"gzipped4.spz", "version 4 files are not gzipped"});
 }
 
 TEST(FormatsSpzErrors, TruncatedPayload) {

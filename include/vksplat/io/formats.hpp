@@ -2,13 +2,21 @@
 // Scene files other than the INRIA .ply, and one entry point that picks the reader or writer by
 // extension or by name.
 //
-//   format name       extension  read  write  what it is
-//   "ply"             .ply       yes   yes    INRIA 3DGS PLY (io/ply.hpp); reading also accepts a
-//                                             compressed PLY, told apart by its header
-//   "compressed-ply"  .ply       yes   no     PlayCanvas compressed PLY (chunks of 256 splats)
-//   "splat"           .splat     yes   yes    antimatter15 .splat: 32 bytes a splat, SH degree 0
-//   "spz"             .spz       yes   yes    Niantic SPZ (gzip), versions 2 and 3; writes 3
-//   "gsplat-pt"       .pt .pth   yes   no     gsplat checkpoint saved by torch.save (zip + pickle)
+//   format name       extension        read  write  what it is
+//   "ply"             .ply             yes   yes    INRIA 3DGS PLY (io/ply.hpp); reading also accepts a
+//                                                   compressed PLY, told apart by its header
+//   "compressed-ply"  .compressed.ply  yes   yes    PlayCanvas compressed PLY (chunks of 256 splats)
+//   "splat"           .splat           yes   yes    antimatter15 .splat: 32 bytes a splat, SH degree 0
+//   "spz"             .spz             yes   yes    Niantic SPZ, versions 2, 3 and 4; writes 4
+//   "spz-v3"          (name only)      yes   yes    the same, written as version 3 (gzip), for readers
+//                                                   that predate version 4
+//   "gsplat-pt"       .pt .pth         yes   no     gsplat checkpoint saved by torch.save (zip + pickle)
+//
+// SPZ is written as version 4 unless asked otherwise, as Niantic's library and splat-transform
+// (2.x) write it: it is about 30% smaller than version 3 (zstd per attribute rather than one gzip
+// stream), and the readers people open SPZ with (Niantic's library, splat-transform and so
+// SuperSplat, three.js, LichtFeld Studio) read it. Viewers with a decoder of their own that stops at
+// version 3 get "spz-v3".
 //
 // Every reader throws InputError naming the file and what is wrong with it (truncated, wrong magic
 // or version, counts that overflow or disagree with the file's size, ...). Every writer goes
@@ -32,24 +40,34 @@ void write_splat(const GaussianCloud& cloud, const std::filesystem::path& path,
                  WriteMode mode = WriteMode::refuse_existing);
 
 // ---- Niantic .spz -----------------------------------------------------------------------------
-// Reads versions 2 (quaternion as x, y, z bytes) and 3 (quaternion "smallest three" in 4 bytes),
+// Reads versions 2 (quaternion as x, y, z bytes), 3 (quaternion "smallest three" in 4 bytes) and 4
+// (3's values, each attribute a zstd frame of its own after a plain header and table of contents),
 // SH degree 0 to 3. SPZ keeps its splats in RUB axes (y up, z back) where PLY and the cloud use RDF
 // (y down, z forward): reading and writing turn them half a turn about x (y, z, the quaternion's y
-// and z, and the SH odd in them change sign), as Niantic's library and splat-transform do. Files
-// that use SPZ extensions (flag 0x2) are refused. An alpha of 0 or 255 becomes -/+kMaxOpacityLogit.
+// and z, and the SH odd in them change sign), as Niantic's library and splat-transform do. Version
+// 4 may say otherwise in its coordinate-system extension: RUB and RDF are honoured, any other
+// system is refused, and other extensions are noted as ignored. Versions 2 and 3 with extensions
+// (flag 0x2) are refused. An alpha of 0 or 255 becomes -/+kMaxOpacityLogit.
 GaussianCloud read_spz(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
-// Writes version 3 with 12 fractional bits for positions (fewer when a coordinate would not fit in
-// 24 bits) and SH quantised to the full 8 bits. Throws InputError for non-finite positions or
-// coordinates beyond 2^23 (which SPZ cannot hold).
+// Writes `version` (4 or 3) with 12 fractional bits for positions (fewer when a coordinate would not
+// fit in 24 bits) and SH quantised to the full 8 bits, in RUB and without extensions. Throws
+// InputError for non-finite positions or coordinates beyond 2^23 (which SPZ cannot hold).
 void write_spz(const GaussianCloud& cloud, const std::filesystem::path& path,
-               WriteMode mode = WriteMode::refuse_existing);
+               WriteMode mode = WriteMode::refuse_existing, int version = 4);
 
-// ---- PlayCanvas compressed .ply (read only) ---------------------------------------------------
+// ---- PlayCanvas compressed .ply -----------------------------------------------------------------
 // Element `chunk` (min/max of position and log scale, optionally of colour, per 256 splats), element
 // `vertex` with packed_position (11-10-11), packed_rotation (2 + 10-10-10, smallest three),
 // packed_scale (11-10-11) and packed_color (8-8-8-8 RGBA), and optionally element `sh` with u8
 // f_rest_* coefficients.
 GaussianCloud read_compressed_ply(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+// Writes the layout above as splat-transform does: the splats reordered along a Morton curve of
+// their positions (so each chunk covers a small box), chunk ranges with colour, SH as bytes over
+// [-4, 4]. Per splat that quantises positions and log scales to 1/2047 (x, z) and 1/1023 (y) of
+// their chunk's range, colours to 1/255 of theirs, opacity (after the sigmoid) to 1/255, rotations
+// to 10 bits of each smaller component and SH to 8/256. Throws InputError for non-finite positions.
+void write_compressed_ply(const GaussianCloud& cloud, const std::filesystem::path& path,
+                          WriteMode mode = WriteMode::refuse_existing);
 // True when the file is a PLY whose header declares the compressed layout (a `chunk` element and a
 // `vertex` element with packed_position). Throws InputError if the file is not a PLY at all.
 bool is_compressed_ply(const std::filesystem::path& path);
@@ -64,27 +82,29 @@ GaussianCloud read_gsplat_checkpoint(const std::filesystem::path& path, std::vec
 // ---- any scene file ---------------------------------------------------------------------------
 // The format names read_scene and write_scene accept, in the order above.
 std::vector<std::string> scene_formats();
-// The format of `path` by its extension (case-insensitive); for .ply the header decides between
-// "ply" and "compressed-ply" when the file exists. Throws InputError, listing the supported
-// extensions, for any other extension.
+// The format of `path` by its extension (case-insensitive; ".compressed.ply" names "compressed-ply");
+// for any .ply the header decides between "ply" and "compressed-ply" when the file exists. Throws
+// InputError, listing the supported extensions, for any other extension.
 std::string scene_format_of(const std::filesystem::path& path);
 // The format `format` names (case-insensitive), or when it is empty the one `path`'s extension
-// names ("ply" for any .ply). It never opens the file: what a writer goes by, since a file about
-// to be replaced has no say in what replaces it. Throws InputError like scene_format_of, or for
-// an unknown format name.
+// names ("compressed-ply" for .compressed.ply, "ply" for any other .ply). It never opens the file:
+// what a writer goes by, since a file about to be replaced has no say in what replaces it. Throws
+// InputError like scene_format_of, or for an unknown format name.
 std::string scene_format_named(const std::filesystem::path& path, const std::string& format = "");
 
 // Reads a scene in the format named by `format`, or by the extension when `format` is empty.
-// "ply" reads either PLY flavour (the header decides). Notes (ignored properties, skipped data, what
+// "ply", and a .ply by its extension (.compressed.ply too), read either PLY flavour: the header
+// decides. Notes (ignored properties, skipped data, what
 // a format could not hold) are appended to `notes`.
 GaussianCloud read_scene(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr,
                          std::string format = "");
 // What write_scene checks before it writes, for commands to call before any work: the format
-// (as write_scene chooses it, returned) is one it writes, and io::check_writable passes.
+// (as write_scene chooses it, returned) is one it writes, and io::check_writable passes. The
+// refusal names the file and lists the extensions that can be written.
 std::string check_scene_writable(const std::filesystem::path& path, WriteMode mode = WriteMode::refuse_existing,
                                  const std::string& format = "");
-// Writes a scene as "ply", "splat" or "spz" (by extension when `format` is empty). The read-only
-// formats, and unknown ones, give InputError.
+// Writes a scene in any writable format of the table above (by extension when `format` is empty).
+// The read-only formats, and unknown ones, give InputError.
 void write_scene(const GaussianCloud& cloud, const std::filesystem::path& path,
                  WriteMode mode = WriteMode::refuse_existing, std::string format = "");
 

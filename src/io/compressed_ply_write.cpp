@@ -1,0 +1,186 @@
+// Writes PlayCanvas's compressed PLY as splat-transform does (and read_compressed_ply reads it):
+// splats in Morton order, so that each chunk of 256 covers a small box and its ranges quantise
+// finely; per chunk the ranges of position, log scale and colour as floats; per splat four words
+// packing its values relative to those ranges; the higher SH as bytes.
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "io/formats_detail.hpp"
+#include "vksplat/io/formats.hpp"
+
+namespace vksplat::io {
+namespace {
+
+constexpr size_t kChunkSize = 256;
+constexpr const char* kChunkFields[] = {"min_x",       "min_y",       "min_z",       "max_x",       "max_y",
+                                        "max_z",       "min_scale_x", "min_scale_y", "min_scale_z", "max_scale_x",
+                                        "max_scale_y", "max_scale_z", "min_r",       "min_g",       "min_b",
+                                        "max_r",       "max_g",       "max_b"};
+constexpr const char* kVertexFields[] = {"packed_position", "packed_rotation", "packed_scale", "packed_color"};
+// splat-transform clamps the log-scale ranges here: some trained scenes hold infinite scales.
+constexpr float kLargestLogScale = 20.0f;
+// The SH bytes span [-4, 4].
+constexpr double kShSpan = 8.0;
+
+// The low 21 bits of `v`, two zero bits after each.
+uint64_t spread_three(uint64_t v) {
+    v &= 0x1fffff;
+    v = (v | v << 32) & 0x001f00000000ffffull;
+    v = (v | v << 16) & 0x001f0000ff0000ffull;
+    v = (v | v << 8) & 0x100f00f00f00f00full;
+    v = (v | v << 4) & 0x10c30c30c30c30c3ull;
+    v = (v | v << 2) & 0x1249249249249249ull;
+    return v;
+}
+
+// The splats in Morton (Z-curve) order of their positions over the scene's box, at 21 bits an
+// axis. splat-transform uses 10 bits an axis and re-sorts any run of more than 256 equal codes;
+// 21 bits reach the same order in one pass.
+std::vector<size_t> morton_order(const GaussianCloud& cloud) {
+    const size_t n = cloud.size();
+    float low[3], high[3];
+    std::fill(low, low + 3, INFINITY);
+    std::fill(high, high + 3, -INFINITY);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t a = 0; a < 3; ++a) {
+            low[a] = std::min(low[a], cloud.positions[i * 3 + a]);
+            high[a] = std::max(high[a], cloud.positions[i * 3 + a]);
+        }
+    constexpr double kCells = double(1 << 21);
+    std::vector<uint64_t> code(n);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t a = 0; a < 3; ++a) {
+            const double extent = double(high[a]) - low[a];
+            const double cell = extent > 0 ? (cloud.positions[i * 3 + a] - double(low[a])) / extent * kCells : 0.0;
+            code[i] |= spread_three(static_cast<uint64_t>(std::clamp(cell, 0.0, kCells - 1))) << a;
+        }
+    std::vector<size_t> order(n);
+    std::iota(order.begin(), order.end(), size_t{0});
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return code[a] < code[b]; });
+    return order;
+}
+
+struct Range {
+    float min = INFINITY, max = -INFINITY;
+    void add(float v) {
+        min = std::min(min, v);
+        max = std::max(max, v);
+    }
+    // Where `v` lies in the range, 0 to 1; a range too small to divide by gives 0.
+    double where(double v) const {
+        if (v <= min) return 0;
+        if (v >= max) return 1;
+        return double(max) - min < 1e-5 ? 0 : (v - min) / (double(max) - min);
+    }
+};
+
+uint32_t unorm(double t, int bits) {
+    const double steps = double((1u << bits) - 1);
+    if (!(t == t)) return 0;  // NaN
+    return static_cast<uint32_t>(std::clamp(std::floor(t * steps + 0.5), 0.0, steps));
+}
+
+uint32_t pack_11_10_11(double x, double y, double z) { return unorm(x, 11) << 21 | unorm(y, 10) << 11 | unorm(z, 11); }
+
+// Smallest three, in rot_0..rot_3 (w, x, y, z) order: the index of the largest component in the top
+// two bits, each other one in 10 bits as q * sqrt(1/2) + 1/2 (their magnitudes are below sqrt(1/2)).
+uint32_t pack_rotation(const float* rotation) {
+    double q[4], norm = 0;
+    for (size_t a = 0; a < 4; ++a) norm += double(rotation[a]) * rotation[a];
+    norm = std::sqrt(norm);
+    for (size_t a = 0; a < 4; ++a) q[a] = norm > 0 && std::isfinite(norm) ? rotation[a] / norm : (a == 0 ? 1.0 : 0.0);
+    uint32_t largest = 0;
+    for (uint32_t a = 1; a < 4; ++a)
+        if (std::abs(q[a]) > std::abs(q[largest])) largest = a;
+    const double sign = q[largest] < 0 ? -1 : 1;  // q and -q are the same rotation: the largest is kept positive
+    uint32_t packed = largest;
+    for (uint32_t a = 0; a < 4; ++a)
+        if (a != largest) packed = packed << 10 | unorm(sign * q[a] * std::sqrt(0.5) + 0.5, 10);
+    return packed;
+}
+
+uint8_t sh_byte(double value) {
+    const double byte = std::trunc((value / kShSpan + 0.5) * 256);
+    return byte == byte ? static_cast<uint8_t>(std::clamp(byte, 0.0, 255.0)) : 128;
+}
+
+std::string header_text(size_t count, size_t chunks, size_t sh_rest) {
+    std::string text = "ply\nformat binary_little_endian 1.0\ncomment written by vksplat\nelement chunk " +
+                       std::to_string(chunks) + "\n";
+    for (const char* name : kChunkFields) text += std::string("property float ") + name + "\n";
+    text += "element vertex " + std::to_string(count) + "\n";
+    for (const char* name : kVertexFields) text += std::string("property uint ") + name + "\n";
+    if (sh_rest) {
+        text += "element sh " + std::to_string(count) + "\n";
+        for (size_t r = 0; r < sh_rest; ++r) text += "property uchar f_rest_" + std::to_string(r) + "\n";
+    }
+    return text + "end_header\n";
+}
+
+}  // namespace
+
+void write_compressed_ply(const GaussianCloud& cloud, const std::filesystem::path& path, WriteMode mode) {
+    const std::string where = path.string();
+    detail::check_writable(cloud, where);
+    for (size_t i = 0; i < cloud.positions.size(); ++i)
+        if (!std::isfinite(cloud.positions[i]))
+            throw InputError(where, "cannot write Gaussian " + std::to_string(i / 3) +
+                                        ": its position is not finite (sanitize() the cloud first)");
+    const size_t n = cloud.size();
+    const size_t coefficients = static_cast<size_t>(cloud.sh_coefficients());
+    const size_t rest_per_channel = coefficients - 1;
+    const size_t chunks = (n + kChunkSize - 1) / kChunkSize;
+    const std::vector<size_t> order = morton_order(cloud);
+    const auto colour = [&](size_t i, size_t a) {
+        return static_cast<float>(cloud.sh[i * coefficients * 3 + a] * detail::kShC0 + 0.5);
+    };
+
+    std::string chunk_rows, vertex_rows, sh_rows;
+    chunk_rows.reserve(chunks * std::size(kChunkFields) * 4);
+    vertex_rows.reserve(n * 16);
+    sh_rows.reserve(n * rest_per_channel * 3);
+    for (size_t c = 0; c < chunks; ++c) {
+        const size_t first = c * kChunkSize, last = std::min(n, first + kChunkSize);
+        Range position[3], scale[3], rgb[3];
+        for (size_t s = first; s < last; ++s)
+            for (size_t a = 0; a < 3; ++a) {
+                position[a].add(cloud.positions[order[s] * 3 + a]);
+                scale[a].add(cloud.log_scales[order[s] * 3 + a]);
+                rgb[a].add(colour(order[s], a));
+            }
+        for (Range& range : scale) {
+            range.min = std::clamp(range.min, -kLargestLogScale, kLargestLogScale);
+            range.max = std::clamp(range.max, -kLargestLogScale, kLargestLogScale);
+        }
+        for (const Range* ranges : {position, scale, rgb}) {
+            for (size_t a = 0; a < 3; ++a) detail::store_little_endian(chunk_rows, ranges[a].min);
+            for (size_t a = 0; a < 3; ++a) detail::store_little_endian(chunk_rows, ranges[a].max);
+        }
+        for (size_t s = first; s < last; ++s) {
+            const size_t i = order[s];
+            const float* p = &cloud.positions[i * 3];
+            const float* l = &cloud.log_scales[i * 3];
+            detail::store_little_endian(
+                vertex_rows, pack_11_10_11(position[0].where(p[0]), position[1].where(p[1]), position[2].where(p[2])));
+            detail::store_little_endian(vertex_rows, pack_rotation(&cloud.rotations[i * 4]));
+            detail::store_little_endian(vertex_rows,
+                                        pack_11_10_11(scale[0].where(l[0]), scale[1].where(l[1]), scale[2].where(l[2])));
+            detail::store_little_endian(vertex_rows, unorm(rgb[0].where(colour(i, 0)), 8) << 24 |
+                                                         unorm(rgb[1].where(colour(i, 1)), 8) << 16 |
+                                                         unorm(rgb[2].where(colour(i, 2)), 8) << 8 |
+                                                         unorm(detail::sigmoid(cloud.opacity_logits[i]), 8));
+            // f_rest_* channel-major, as in the INRIA layout; the cloud keeps [coefficient][rgb].
+            for (size_t channel = 0; channel < 3; ++channel)
+                for (size_t k = 1; k < coefficients; ++k)
+                    sh_rows += static_cast<char>(sh_byte(cloud.sh[i * coefficients * 3 + k * 3 + channel]));
+        }
+    }
+    std::string header = header_text(n, chunks, rest_per_channel * 3);
+    write_file_atomically(path, mode, [&](std::ostream& out) {
+        for (const std::string* part : {&header, &chunk_rows, &vertex_rows, &sh_rows})
+            out.write(part->data(), static_cast<std::streamsize>(part->size()));
+    });
+}
+
+}  // namespace vksplat::io
