@@ -41,10 +41,23 @@ int main(int argc, char** argv) {
     app.add_option("--max-screen-radius", recipe.densify.max_screen_radius,
                    "> 0: after the first opacity reset, also prune radii above it (pixels)");
     app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
+    std::string strategy = "automatic", ranking = "mean";
+    uint64_t evaluate_every = 0;
+    app.add_option("--strategy", strategy, "automatic, reference or budget");
+    app.add_option("--growth-exponent", recipe.budget.growth_exponent);
+    app.add_option("--reach", recipe.budget.reach);
+    app.add_option("--ranking", ranking, "mean or sum (of the densification gradient)");
+    app.add_option("--min-gradient", recipe.budget.min_gradient);
+    app.add_option("--prune-ratio", recipe.budget.prune_ratio);
+    app.add_option("--start-fraction", recipe.start_fraction);
+    app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);
     try {
         recipe.densify.max_gaussians = max_gaussians;
+        recipe.strategy = jobs::parse_densify_strategy(strategy);
+        if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");
+        recipe.budget.ranking = ranking == "sum" ? train::DensifyRanking::gradient_sum : train::DensifyRanking::mean_gradient;
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         const jobs::TrainingData data = jobs::load_training_data(data_dir, recipe, 1.0, 0);
         for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
@@ -58,6 +71,7 @@ int main(int argc, char** argv) {
         options.background = {background[0], background[1], background[2]};
         options.out_dir = out_dir;
         options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
+        options.evaluate_every = evaluate_every;
         RenderSettings settings;
         settings.background = options.background;
         const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {
@@ -93,6 +107,9 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                     result.seconds, result.strategy_seconds, result.gaussians, result.gpu_ms_per_iteration,
                     double(result.peak_device_bytes) / 1e6, result.scene_extent);
+        std::printf("strategy %s: %zu pruned by importance in %llu events (%.1f s scoring)\n", result.strategy.c_str(),
+                    result.budget_events.pruned, static_cast<unsigned long long>(result.budget_events.prune_events),
+                    result.budget_events.importance_seconds);
         std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);
         return 0;
     } catch (const std::exception& e) {

@@ -4,6 +4,9 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
+#include <numeric>
+#include <random>
 
 #include <nlohmann/json.hpp>
 
@@ -19,6 +22,8 @@
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/initialize.hpp"
 #include "stats/median.hpp"
+#include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/scores.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -32,6 +37,9 @@ constexpr uint64_t kFixedBytesPerGaussian = 4 * 11 * 4 + 48 + 36 + 12 + 100 + 6 
 // Per pixel: the frame's colour, depth and count, the trainer's transmittance, last position,
 // pixel gradient and photo, and the loss's nine planes.
 constexpr uint64_t kBytesPerPixel = 24 + 28 + 36;
+
+// The history records the count after every this many steps.
+constexpr uint64_t kSnapshotEvery = 500;
 
 // COLMAP reads distorted models as pinholes with a warning; training on them would fit the
 // distortion into the scene, so they are refused here.
@@ -66,8 +74,55 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
     return points;
 }
 
+DensifyStrategy chosen_strategy(const TrainRecipe& recipe) {
+    if (recipe.strategy != DensifyStrategy::automatic) return recipe.strategy;
+    return recipe.densify.max_gaussians > 0 ? DensifyStrategy::budget : DensifyStrategy::reference;
+}
+
+// A seeded random `count` of the cloud's Gaussians, in their order.
+GaussianCloud random_subset(const GaussianCloud& cloud, size_t count, uint64_t seed) {
+    std::vector<size_t> order(cloud.size());
+    std::iota(order.begin(), order.end(), size_t(0));
+    std::mt19937_64 rng(seed ^ 0x5bd1e995u);
+    std::shuffle(order.begin(), order.end(), rng);
+    std::vector<uint8_t> keep(cloud.size(), 0);
+    for (size_t k = 0; k < count; ++k) keep[order[k]] = 1;
+    return cloud.subset(keep);
+}
+
+// The budget recipe's importance: blend weight (Sum alpha T over every pixel) over the training
+// views, the prune module's "blend" score, rendered on the trainer's current Gaussians.
+train::Importance importance_over(const gpu::Context& context, const TrainingData& data, const TrainOptions& options) {
+    RenderSettings settings;
+    settings.background = options.background;
+    // A renderer of its own each time, so that its device memory is held only while it scores.
+    return [&context, settings, &data](const GaussianCloud& cloud) {
+        Renderer renderer(context);
+        const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings);
+        return prune::score(cloud, totals, prune::ScoreMethod::blend);
+    };
+}
+
+nlohmann::json history_json(const std::vector<TrainSnapshot>& history) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& h : history)
+        out.push_back({{"iteration", h.iteration},
+                       {"gaussians", h.gaussians},
+                       {"test_psnr", h.test_psnr ? nlohmann::json(*h.test_psnr) : nlohmann::json()}});
+    return out;
+}
+
 void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) { out << json.dump(2) << '\n'; });
+}
+
+// The budget recipe's settings as a checkpoint records them ("reference" for the reference recipe).
+std::string budget_text(const TrainRecipe& r) {
+    if (chosen_strategy(r) == DensifyStrategy::reference) return "reference";
+    const auto& b = r.budget;
+    return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
+           std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
+           std::to_string(b.prune_ratio) + ", start " + std::to_string(r.start_fraction);
 }
 
 // What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the
@@ -82,11 +137,26 @@ train::CheckpointOwner training_owner(const TrainingData& data, const TrainOptio
              {"seed", std::to_string(options.seed)},
              {"densification", "until " + std::to_string(r.densify_until) + ", threshold " +
                                    std::to_string(r.densify.grad_threshold) + ", at most " +
-                                   std::to_string(r.densify.max_gaussians)},
+                                   std::to_string(r.densify.max_gaussians) + ", " + budget_text(r)},
              {"SH degree", std::to_string(r.sh_degree)}}};
 }
 
 }  // namespace
+
+std::string_view to_string(DensifyStrategy strategy) {
+    switch (strategy) {
+        case DensifyStrategy::automatic: return "automatic";
+        case DensifyStrategy::reference: return "reference";
+        case DensifyStrategy::budget: return "budget";
+    }
+    return "?";
+}
+
+DensifyStrategy parse_densify_strategy(std::string_view name) {
+    for (auto s : {DensifyStrategy::automatic, DensifyStrategy::reference, DensifyStrategy::budget})
+        if (name == to_string(s)) return s;
+    throw InputError("--strategy " + std::string(name), "unknown; choose automatic, reference or budget");
+}
 
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
     const uint64_t per_gaussian = kFixedBytesPerGaussian + 4 * 4 * uint64_t(sh_coefficients_for_degree(sh_degree)) * 3;
@@ -180,7 +250,27 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train::ReferenceSchedule schedule = recipe;
     schedule.densify.max_gaussians = schedule.densify.max_gaussians > 0 ? std::min(schedule.densify.max_gaussians, room) : room;
     schedule.white_background = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
-    train::ReferenceStrategy strategy(schedule);
+    result.strategy = std::string(to_string(chosen_strategy(recipe)));
+    GaussianCloud start = data.initial;
+    std::unique_ptr<train::Strategy> strategy;
+    train::BudgetStrategy* budget_strategy = nullptr;
+    if (chosen_strategy(recipe) == DensifyStrategy::reference) {
+        strategy = std::make_unique<train::ReferenceStrategy>(schedule);
+    } else {
+        if (recipe.densify.max_gaussians == 0)
+            throw InputError("--strategy budget", "needs --max-gaussians: the budget it trains to");
+        train::BudgetSchedule budget = recipe.budget;
+        budget.budget = schedule.densify.max_gaussians;
+        const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget.budget) * recipe.start_fraction)));
+        if (start.size() > most) {
+            start = random_subset(start, most, options.seed);
+            notice("budget " + std::to_string(budget.budget) + ": starting from a random " + std::to_string(most) +
+                   " of the " + std::to_string(data.initial.size()) + " starting points, so that growth has room");
+        }
+        budget.start = start.size();
+        strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
+        budget_strategy = static_cast<train::BudgetStrategy*>(strategy.get());
+    }
 
     result.scene_extent = training_extent(data.cameras, data.train_views, notice);
     if (resumed) notice(resume_notice(*resumed, recipe.iterations));
@@ -190,16 +280,27 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
         options.resume ? std::make_unique<train::Trainer>(context, checkpoint, train_options)
-                       : std::make_unique<train::Trainer>(context, data.initial, train_options);
+                       : std::make_unique<train::Trainer>(context, start, train_options);
 
     train::LoopOptions loop{.iterations = recipe.iterations,
                             .seed = options.seed,
                             .checkpoint = checkpoint,
                             .checkpoint_every = options.checkpoint_every,
                             .stop = options.stop,
-                            .source = "training from " + data.folder.string()};
+                            .source = "training from " + data.folder.string(),
+                            .snapshot_every = kSnapshotEvery,
+                            .snapshot = [&](const train::Trainer& t, uint64_t iteration) {
+                                TrainSnapshot snapshot{iteration, t.size(), {}};
+                                const bool last = iteration == recipe.iterations;
+                                if (measure && !test.cameras.empty() && options.evaluate_every > 0 &&
+                                    (iteration % options.evaluate_every == 0 || last))
+                                    snapshot.test_psnr = measure(t.cloud(), test).mean_psnr;
+                                result.history.push_back(snapshot);
+                            }};
     static_cast<train::LoopResult&>(result) =
-        train::run_training_loop(*trainer, strategy, data.cameras, data.train_views, train_photos, loop, progress);
+        train::run_training_loop(*trainer, *strategy, data.cameras, data.train_views, train_photos, loop, progress);
+    result.evaluate_seconds = result.snapshot_seconds;
+    if (budget_strategy) result.budget_events = budget_strategy->events();
     result.gaussians = trainer->size();
     if (result.interrupted) return result;
     const GaussianCloud trained = trainer->cloud();
@@ -231,7 +332,12 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"test_views", data.test_views.size()},
                            {"test_psnr", measured(result.test.mean_psnr)},
                            {"test_ssim", measured(result.test.mean_ssim)},
-                           {"test_psnr_per_view", result.test.psnr}};
+                           {"test_psnr_per_view", result.test.psnr},
+                           {"strategy", result.strategy},
+                           {"pruned_by_importance", result.budget_events.pruned},
+                           {"importance_seconds", result.budget_events.importance_seconds},
+                           {"evaluate_seconds", result.evaluate_seconds},
+                           {"history", history_json(result.history)}};
     write_json(result.metrics_json, metrics, mode);
     return result;
 }

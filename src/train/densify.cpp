@@ -54,21 +54,25 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
     DensifyPlan plan;
     plan.report.before = n;
 
-    // Candidates by their mean NDC gradient over the views that drew them.
+    // Candidates by their mean NDC gradient over the views that drew them (a threshold of 0 still
+    // leaves out those no view drew).
     std::vector<float> grad(n, 0.0f);
     std::vector<uint32_t> candidates;
     for (size_t i = 0; i < n; ++i) {
         const float views = sum(i, 1);
         grad[i] = views > 0 ? sum(i, 0) / views : 0.0f;
-        if (grad[i] >= rules.grad_threshold) candidates.push_back(uint32_t(i));
+        if (views > 0 && grad[i] >= rules.grad_threshold) candidates.push_back(uint32_t(i));
     }
-    // Under a cap, growth keeps the largest gradients: a clone adds one Gaussian, a split one more
-    // than it removes.
+    // Under a cap, growth keeps the best ranked: a clone adds one Gaussian, a split one more than
+    // it removes.
     if (rules.max_gaussians > 0) {
         const size_t room = rules.max_gaussians > n ? rules.max_gaussians - n : 0;
         if (candidates.size() > room) {
+            std::vector<float> rank(n);
+            for (uint32_t i : candidates)
+                rank[i] = rules.ranking == DensifyRanking::mean_gradient ? grad[i] : sum(i, 0);
             std::partial_sort(candidates.begin(), candidates.begin() + long(room), candidates.end(),
-                              [&](uint32_t a, uint32_t b) { return grad[a] > grad[b] || (grad[a] == grad[b] && a < b); });
+                              [&](uint32_t a, uint32_t b) { return rank[a] > rank[b] || (rank[a] == rank[b] && a < b); });
             candidates.resize(room);
             std::sort(candidates.begin(), candidates.end());
         }

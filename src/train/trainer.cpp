@@ -208,6 +208,24 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     return plan.report;
 }
 
+size_t Trainer::remove(const std::vector<uint8_t>& keep) {
+    auto& d = *impl_;
+    if (keep.size() != d.scene.layout.count) throw std::invalid_argument("Trainer::remove: one flag per Gaussian");
+    DensifyPlan plan;
+    for (uint32_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) plan.sources.push_back(i);
+    plan.fresh_from = plan.split_from = uint32_t(plan.sources.size());
+    const DensifyInputs before = d.densify.download_inputs(d.scene);
+    std::vector<float> sums;
+    sums.reserve(plan.sources.size() * kDensifyStride);
+    for (uint32_t i : plan.sources)
+        sums.insert(sums.end(), before.sums.begin() + i * kDensifyStride, before.sums.begin() + (i + 1) * kDensifyStride);
+    TrainableScene next = d.densify.apply(d.scene, plan);
+    if (!sums.empty()) next.restore_densify_sums(d.context, sums);
+    d.scene = std::move(next);
+    return keep.size() - plan.sources.size();
+}
+
 // The densification sums carry on: the reference resets opacity without touching them.
 void Trainer::reset_opacity(double max_opacity) { impl_->densify.reset_opacity(impl_->scene, max_opacity); }
 

@@ -82,6 +82,11 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
         result.strategy_seconds += seconds_since(strategy_start);
 
         const bool last = iteration == options.iterations;
+        if (options.snapshot && ((options.snapshot_every > 0 && iteration % options.snapshot_every == 0) || last)) {
+            const auto snapshot_start = Clock::now();
+            options.snapshot(trainer, iteration);
+            result.snapshot_seconds += seconds_since(snapshot_start);
+        }
         if (!options.checkpoint.empty() && (iteration % options.checkpoint_every == 0 || last))
             trainer.save_checkpoint(options.checkpoint);
         if (progress && (last || seconds_since(last_report) >= kReportSeconds)) {
@@ -99,7 +104,7 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
             since_report = 0;
         }
     }
-    result.seconds = seconds_since(start);
+    result.seconds = seconds_since(start) - result.snapshot_seconds;
     if (result.interrupted && !options.checkpoint.empty()) trainer.save_checkpoint(options.checkpoint);
     result.iterations = trainer.iteration();
     result.skipped = trainer.skipped_steps();

@@ -113,10 +113,26 @@ TEST(Densify, TheCapKeepsTheLargestGradients) {
     EXPECT_EQ(plan.sources, (std::vector<uint32_t>{0, 1, 2, 3, 1, 2}));
 }
 
+// Summed over views, a smaller mean gradient that four more views share outranks a larger one.
+TEST(Densify, TheGradientSumRanksByEveryViewThatAsks) {
+    DensifyInputs in = inputs_of({0.05f, 0.05f}, {0.004f, 0.003f});
+    in.sums[1 * train::kDensifyStride] = 0.003f * 8.0f;
+    in.sums[1 * train::kDensifyStride + 1] = 8.0f;
+    DensifyRules rules;
+    rules.max_gaussians = 3;  // room for one clone
+    EXPECT_EQ(train::plan_densify(in, rules, 10.0, 1).sources, (std::vector<uint32_t>{0, 1, 0}));
+    rules.ranking = train::DensifyRanking::gradient_sum;
+    EXPECT_EQ(train::plan_densify(in, rules, 10.0, 1).sources, (std::vector<uint32_t>{0, 1, 1}));
+}
+
 TEST(Densify, NotDrawnMeansNoGradient) {
     DensifyInputs in = inputs_of({0.05f}, {1.0f});
     in.sums[1] = 0.0f;  // no view drew it, whatever the sum says
     EXPECT_EQ(train::plan_densify(in, DensifyRules{}, 10.0, 1).report.after, 1u);
+    // Nor is it a candidate when every gradient qualifies.
+    DensifyRules any;
+    any.grad_threshold = 0;
+    EXPECT_EQ(train::plan_densify(in, any, 10.0, 1).report.after, 1u);
 }
 
 class DensifyPasses : public GpuTest {};

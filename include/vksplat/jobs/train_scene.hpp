@@ -18,21 +18,36 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/finetune.hpp"
+#include "vksplat/train/budget_strategy.hpp"
 #include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"
 #include "vksplat/train/training_loop.hpp"
 
 namespace vksplat::jobs {
 
+// How the Gaussians grow: the reference recipe (train::ReferenceStrategy) or training to a budget
+// (train::BudgetStrategy). automatic: the budget recipe when densify.max_gaussians is set, else the
+// reference.
+enum class DensifyStrategy { automatic, reference, budget };
+// "automatic", "reference", "budget"; parse_densify_strategy throws InputError listing them.
+std::string_view to_string(DensifyStrategy strategy);
+DensifyStrategy parse_densify_strategy(std::string_view name);
+
 // The reference schedule (train::ReferenceSchedule: SH degree, densification, opacity resets) and
 // the run's length and data choices.
 struct TrainRecipe : train::ReferenceSchedule {
+    DensifyStrategy strategy = DensifyStrategy::automatic;
+    // The budget recipe's growth and pruning; its budget is densify.max_gaussians and its start the
+    // starting points, at most start_fraction x the budget of them (a seeded random subset).
+    train::BudgetSchedule budget;
+    double start_fraction = 0.5;
     uint64_t iterations = 30000;
     uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
     size_t random_points = 100000;      // NeRF-synthetic and INRIA starts
@@ -72,6 +87,17 @@ struct TrainOptions {
     const std::atomic<bool>* stop = nullptr;
     // Warnings and notes for the user, each a line, given before the first step.
     std::function<void(const std::string&)> notice;
+    // Test PSNR measured every this many iterations (and at the last) into TrainResult::history;
+    // 0: only at the end. Its time is not in the run's seconds.
+    uint64_t evaluate_every = 0;
+};
+
+// The run as it went: after every 500th step (and the last) the Gaussians held; where measured
+// (TrainOptions::evaluate_every), the test PSNR.
+struct TrainSnapshot {
+    uint64_t iteration = 0;
+    size_t gaussians = 0;
+    std::optional<double> test_psnr;
 };
 
 
@@ -79,6 +105,10 @@ struct TrainOptions {
 // resets), and:
 struct TrainResult : train::LoopResult {
     size_t gaussians = 0;
+    std::string strategy;              // "reference" or "budget"
+    train::BudgetEvents budget_events; // what the budget recipe pruned by importance
+    std::vector<TrainSnapshot> history;
+    double evaluate_seconds = 0;       // measuring history's test PSNR
     eval::Quality test;                // on the test views against the photos
     double scene_extent = 0;
     std::filesystem::path ply, cameras_json, metrics_json;

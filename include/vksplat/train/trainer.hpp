@@ -91,6 +91,13 @@ struct StepResult {
 // max_world_scale x extent. The reference also names a screen-size test (radii above 20 pixels)
 // but reads radii it has just zeroed, so it never removes anything; it is off here by default
 // (max_screen_radius 0) because, measured on bonsai, turning it on costs 9 dB at 7,000 iterations.
+// Which candidates densification keeps when the cap (DensifyRules::max_gaussians) leaves room for
+// fewer than qualify.
+enum class DensifyRanking {
+    mean_gradient,  // the reference's criterion: the mean NDC gradient over the views that drew it
+    gradient_sum,   // that gradient summed over those views: also favours what many views want moved
+};
+
 struct DensifyRules {
     double grad_threshold = 0.0002;
     double percent_dense = 0.01;
@@ -98,7 +105,8 @@ struct DensifyRules {
     bool prune_large = false;
     double max_world_scale = 0.1;
     double max_screen_radius = 0;       // > 0: with prune_large, also remove radii above it (pixels)
-    size_t max_gaussians = 0;           // 0: no cap; else growth stops there, keeping the largest gradients
+    size_t max_gaussians = 0;           // 0: no cap; else growth stops there, keeping the best ranked
+    DensifyRanking ranking = DensifyRanking::mean_gradient;
 };
 
 struct DensifyReport {
@@ -132,6 +140,9 @@ public:
     // Clones, splits and prunes by the gradients gathered since the last call (see DensifyRules),
     // carrying Adam's moments over (zero for new Gaussians), then starts gathering afresh.
     DensifyReport densify(const DensifyRules& rules);
+    // Removes every Gaussian whose keep[i] is 0 (keep has size() entries), carrying the others'
+    // parameters, moments and densification sums over in their order. Returns how many were removed.
+    size_t remove(const std::vector<uint8_t>& keep);
     // The reference's opacity reset: every opacity to at most `max_opacity`, its moments zeroed.
     void reset_opacity(double max_opacity = 0.01);
 

@@ -32,6 +32,10 @@ struct LoopOptions {
     uint64_t checkpoint_every = 1000;
     const std::atomic<bool>* stop = nullptr;  // raised: checkpoint and return with interrupted set
     std::string source;                 // names the run in errors ("finetune of a.ply")
+    // Called after every snapshot_every-th step (0: never) and after the last, to record how the
+    // run goes; its time is not in LoopResult::seconds.
+    uint64_t snapshot_every = 0;
+    std::function<void(const Trainer&, uint64_t iteration)> snapshot = nullptr;
 };
 
 struct LoopStatus {
@@ -47,6 +51,7 @@ struct LoopResult {
     uint64_t skipped = 0;               // of which skipped for non-finite gradients
     bool interrupted = false;
     double seconds = 0;                 // wall time of this run's steps, the strategy's work included
+    double snapshot_seconds = 0;        // spent in LoopOptions::snapshot, not in seconds
     double strategy_seconds = 0;        // of which densification and opacity resets
     double gpu_ms_per_iteration = 0;    // median GPU time of a step (Vulkan timestamps)
     std::vector<StageTiming> stages;    // median GPU time of each pass, in recording order

@@ -1,0 +1,147 @@
+// Training to a budget (train::BudgetStrategy): the growth schedule and the importance cut on the
+// host, Trainer::remove on lavapipe, and a whole run's counts against the schedule.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <vector>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "vksplat/io/image.hpp"
+#include "vksplat/render/renderer.hpp"
+#include "vksplat/train/budget_strategy.hpp"
+#include "vksplat/train/training_loop.hpp"
+
+namespace vksplat::test {
+namespace {
+
+train::BudgetSchedule budget_of(size_t start, size_t budget, double exponent, double reach = 1.0) {
+    train::BudgetSchedule b;
+    b.start = start;
+    b.budget = budget;
+    b.growth_exponent = exponent;
+    b.reach = reach;
+    return b;
+}
+
+TEST(GrowthTarget, RisesFromTheStartToTheBudgetOverTheWindow) {
+    const train::ReferenceSchedule reference;  // densify 500 .. 15,000
+    const auto even = budget_of(1000, 11000, 1.0);
+    EXPECT_EQ(train::growth_target(reference, even, 100), 1000u);
+    EXPECT_EQ(train::growth_target(reference, even, 500), 1000u);
+    EXPECT_EQ(train::growth_target(reference, even, 7750), 6000u);
+    EXPECT_EQ(train::growth_target(reference, even, 15000), 11000u);
+    EXPECT_EQ(train::growth_target(reference, even, 29000), 11000u);
+    // Exponent 2 grows three quarters of the way by the window's middle.
+    EXPECT_EQ(train::growth_target(reference, budget_of(1000, 11000, 2.0), 7750), 8500u);
+    // Reach 0.5: the budget by the window's middle, held from there.
+    EXPECT_EQ(train::growth_target(reference, budget_of(1000, 11000, 1.0, 0.5), 7750), 11000u);
+    EXPECT_EQ(train::growth_target(reference, budget_of(1000, 11000, 1.0, 0.5), 4125), 6000u);
+    // Never below the start's count, never above the budget; a budget below the start is the budget.
+    for (uint64_t i = 0; i < 30000; i += 100) {
+        const size_t t = train::growth_target(reference, budget_of(1000, 11000, 2.0), i);
+        EXPECT_GE(t, 1000u);
+        EXPECT_LE(t, 11000u);
+    }
+    EXPECT_EQ(train::growth_target(reference, budget_of(5000, 3000, 2.0), 100), 3000u);
+}
+
+TEST(KeepMostImportant, DropsTheLowestWithTiesByIndexAndNaNFirst) {
+    const std::vector<float> importance = {0.5f, 0.1f, NAN, 0.1f, 0.9f, 0.3f};
+    EXPECT_EQ(train::keep_most_important(importance, 0.5), (std::vector<uint8_t>{1, 0, 0, 0, 1, 1}));
+    EXPECT_EQ(train::keep_most_important(importance, 0.34), (std::vector<uint8_t>{1, 0, 0, 1, 1, 1}));
+    EXPECT_EQ(train::keep_most_important(importance, 0.0), (std::vector<uint8_t>(6, 1)));
+    // One is always kept.
+    EXPECT_EQ(train::keep_most_important({0.2f, 0.7f}, 0.99), (std::vector<uint8_t>{0, 1}));
+}
+
+TEST(BudgetStrategy, RefusesSettingsItCannotFollow) {
+    const train::ReferenceSchedule reference;
+    EXPECT_THROW(train::BudgetStrategy(reference, budget_of(10, 0, 2.0), {}), std::invalid_argument);
+    EXPECT_THROW(train::BudgetStrategy(reference, budget_of(10, 100, 0.0), {}), std::invalid_argument);
+    EXPECT_THROW(train::BudgetStrategy(reference, budget_of(10, 100, 2.0, 1.5), {}), std::invalid_argument);
+    auto pruning = budget_of(10, 100, 2.0);
+    pruning.prune_ratio = 0.2;
+    EXPECT_THROW(train::BudgetStrategy(reference, pruning, {}), std::invalid_argument);
+}
+
+class BudgetTraining : public GpuTest {
+protected:
+    BudgetTraining() : renderer(context()) {
+        truth = random_scene(7, 60, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.0f);
+        renderer.set_scene(truth);
+        for (size_t v = 0; v < cameras.size(); ++v) {
+            const RenderOutput out = renderer.render(cameras[v]);
+            photos.emplace(v, train::Photo::from_image(io::ImageRGB{out.width, out.height, out.rgb}));
+        }
+    }
+    Renderer renderer;
+    GaussianCloud truth;
+    std::vector<Camera> cameras = row_of_five_views();
+    std::vector<size_t> views = {0, 1, 2, 3, 4};
+    std::map<size_t, train::Photo> photos;
+};
+
+// Removing Gaussians keeps the others' parameters, in order; the survivors keep training.
+TEST_F(BudgetTraining, RemoveKeepsTheOthersAsTheyWere) {
+    train::Trainer trainer(context(), truth, {});
+    for (int i = 0; i < 3; ++i) trainer.step(cameras[size_t(i)], photos.at(size_t(i)));
+    const GaussianCloud before = trainer.cloud();
+    std::vector<uint8_t> keep(before.size(), 1);
+    for (size_t i = 0; i < keep.size(); i += 3) keep[i] = 0;
+    EXPECT_EQ(trainer.remove(keep), (keep.size() + 2) / 3);
+    const GaussianCloud after = trainer.cloud();
+    const GaussianCloud expected = before.subset(keep);
+    ASSERT_EQ(after.size(), expected.size());
+    EXPECT_EQ(after.positions, expected.positions);
+    EXPECT_EQ(after.sh, expected.sh);
+    EXPECT_EQ(after.opacity_logits, expected.opacity_logits);
+    EXPECT_TRUE(trainer.step(cameras[0], photos.at(0)).applied);
+    EXPECT_THROW(trainer.remove(std::vector<uint8_t>(3, 1)), std::invalid_argument);
+}
+
+// A short run on the reference's schedule, scaled down: the count never passes the schedule's
+// target after a densification, importance prunes at the opacity resets inside the window, and the
+// run ends within the budget.
+TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
+    train::ReferenceSchedule reference;
+    reference.sh_degree = 1;
+    reference.sh_degree_interval = 20;
+    reference.densify_from = 10;
+    reference.densify_until = 100;
+    reference.densify_interval = 10;
+    reference.opacity_reset_interval = 40;
+    reference.densify.grad_threshold = 0;  // every drawn Gaussian may grow
+    auto budget = budget_of(20, 90, 2.0);
+    budget.min_gradient = 0;
+    budget.prune_ratio = 0.25;
+    std::vector<uint64_t> scored_at;
+    std::vector<uint8_t> every_third(60, 0);
+    for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
+    train::Trainer trainer(context(), truth.subset(every_third), {});
+    train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
+        scored_at.push_back(trainer.iteration());
+        std::vector<float> importance(cloud.size());
+        for (size_t i = 0; i < cloud.size(); ++i) importance[i] = cloud.opacity_logits[i];
+        return importance;
+    });
+    train::LoopOptions options;
+    options.iterations = 120;
+    std::map<uint64_t, size_t> counts;
+    options.snapshot_every = 10;
+    options.snapshot = [&](const train::Trainer& t, uint64_t iteration) { counts[iteration] = t.size(); };
+    train::run_training_loop(trainer, strategy, cameras, views, photos, options);
+    EXPECT_EQ(scored_at, (std::vector<uint64_t>{40, 80}));  // the resets at 40 and 80; none at 120
+    EXPECT_EQ(strategy.events().prune_events, 2u);
+    EXPECT_GT(strategy.events().pruned, 0u);
+    for (const auto& [iteration, count] : counts)
+        if (iteration > reference.densify_from && iteration < reference.densify_until) {
+            EXPECT_LE(count, train::growth_target(reference, budget, iteration)) << "at " << iteration;
+        }
+    EXPECT_LE(trainer.size(), 90u);
+    EXPECT_GT(counts.at(90), counts.at(20));  // it grew
+}
+
+}  // namespace
+}  // namespace vksplat::test
