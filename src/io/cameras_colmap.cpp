@@ -1,9 +1,11 @@
 // COLMAP models to cameras. COLMAP poses are already world-to-camera with OpenCV axes, and its
 // principal point uses our pixel convention (the top-left pixel's centre is at (0.5, 0.5)), so
-// everything maps directly; only lens distortion has no place in a pinhole Camera.
+// everything maps directly; only lens distortion has no place in a pinhole Camera: read_colmap_cameras
+// leaves it out with a warning, and a data set (dataset.cpp) undistorts its photos (undistort.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <sstream>
 
 #include "io/colmap_model.hpp"
 #include "io/json_fields.hpp"
@@ -37,39 +39,45 @@ ModelFiles locate_model(const fs::path& dir) {
                                        (dir / "0").string());
 }
 
-// Sets the camera's intrinsics from a COLMAP camera; returns the distortion parameters it drops.
-std::vector<double> apply_intrinsics(const detail::ColmapIntrinsics& intrinsics, const std::string& at,
-                                     Camera& camera) {
+// A COLMAP camera's pinhole and distortion, its parameters checked against its model.
+detail::ColmapLens lens_of(const detail::ColmapIntrinsics& intrinsics, const std::string& at) {
     struct Model {
         const char* name;
-        size_t params;
         bool one_focal;  // f cx cy ... rather than fx fy cx cy ...
+        std::vector<std::string> distortion;
     };
-    static constexpr Model models[] = {{"SIMPLE_PINHOLE", 3, true},
-                                       {"PINHOLE", 4, false},
-                                       {"SIMPLE_RADIAL", 4, true},
-                                       {"RADIAL", 5, true},
-                                       {"OPENCV", 8, false}};
+    static const Model models[] = {{"SIMPLE_PINHOLE", true, {}},
+                                   {"PINHOLE", false, {}},
+                                   {"SIMPLE_RADIAL", true, {"k"}},
+                                   {"RADIAL", true, {"k1", "k2"}},
+                                   {"OPENCV", false, {"k1", "k2", "p1", "p2"}},
+                                   {"FULL_OPENCV", false, {"k1", "k2", "p1", "p2", "k3", "k4", "k5", "k6"}}};
     const auto model =
         std::find_if(std::begin(models), std::end(models), [&](const Model& m) { return intrinsics.model == m.name; });
     if (model == std::end(models))
         throw InputError(at, "camera model " + intrinsics.model +
-                                 " is not supported (PINHOLE, SIMPLE_PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV are)");
+                                 " is not supported (SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV and "
+                                 "FULL_OPENCV are; COLMAP's image_undistorter turns other models into PINHOLE)");
     const auto& p = intrinsics.params;
-    if (p.size() != model->params)
-        throw InputError(at, intrinsics.model + " needs " + std::to_string(model->params) + " parameters, got " +
-                                 std::to_string(p.size()));
     const size_t first_principal = model->one_focal ? 1 : 2;
+    const size_t count = first_principal + 2 + model->distortion.size();
+    if (p.size() != count)
+        throw InputError(at, intrinsics.model + " needs " + std::to_string(count) + " parameters, got " +
+                                 std::to_string(p.size()));
     if (intrinsics.width > INT32_MAX || intrinsics.height > INT32_MAX)
         throw InputError(at, "image size " + std::to_string(intrinsics.width) + "x" +
                                  std::to_string(intrinsics.height) + " is absurd");
-    camera.width = static_cast<int>(intrinsics.width);
-    camera.height = static_cast<int>(intrinsics.height);
-    camera.fx = p[0];
-    camera.fy = model->one_focal ? p[0] : p[1];
-    camera.cx = p[first_principal];
-    camera.cy = p[first_principal + 1];
-    return {p.begin() + static_cast<long>(first_principal + 2), p.end()};
+    detail::ColmapLens lens;
+    lens.model = intrinsics.model;
+    lens.width = static_cast<int>(intrinsics.width);
+    lens.height = static_cast<int>(intrinsics.height);
+    lens.fx = p[0];
+    lens.fy = model->one_focal ? p[0] : p[1];
+    lens.cx = p[first_principal];
+    lens.cy = p[first_principal + 1];
+    lens.distortion_names = model->distortion;
+    lens.distortion.assign(p.begin() + static_cast<long>(first_principal + 2), p.end());
+    return lens;
 }
 
 // Rotation matrix of the quaternion (w, x, y, z), normalised first as COLMAP does.
@@ -86,7 +94,18 @@ glm::dmat3 rotation_of(const double* q, const std::string& at) {
 
 }  // namespace
 
-std::vector<Camera> read_colmap_cameras(const fs::path& dir, std::vector<std::string>* warnings) {
+bool detail::ColmapLens::distorted() const {
+    return std::any_of(distortion.begin(), distortion.end(), [](double d) { return d != 0; });
+}
+
+std::string detail::ColmapLens::description() const {
+    std::ostringstream text;
+    text << model;
+    for (size_t i = 0; i < distortion.size(); ++i) text << ' ' << distortion_names[i] << '=' << distortion[i];
+    return text.str();
+}
+
+detail::ColmapCameras detail::read_colmap_lens_cameras(const fs::path& dir) {
     const ModelFiles files = locate_model(dir);
     const auto intrinsics = files.binary ? detail::read_colmap_cameras_binary(files.cameras)
                                          : detail::read_colmap_cameras_text(files.cameras);
@@ -94,8 +113,8 @@ std::vector<Camera> read_colmap_cameras(const fs::path& dir, std::vector<std::st
         files.binary ? detail::read_colmap_images_binary(files.images) : detail::read_colmap_images_text(files.images);
     std::sort(images.begin(), images.end(), [](const auto& a, const auto& b) { return a.name < b.name; });
 
-    std::vector<uint32_t> warned;
-    std::vector<Camera> cameras;
+    ColmapCameras model;
+    model.cameras_file = files.cameras;
     for (size_t index = 0; index < images.size(); ++index) {
         const auto& image = images[index];
         const std::string at = files.images.string() + ": camera " + std::to_string(index) + " ('" + image.name + "')";
@@ -103,25 +122,40 @@ std::vector<Camera> read_colmap_cameras(const fs::path& dir, std::vector<std::st
         if (found == intrinsics.end())
             throw InputError(at, "refers to COLMAP camera " + std::to_string(image.camera_id) + ", which " +
                                      files.cameras.string() + " does not define");
+        auto lens = model.lenses.find(image.camera_id);
+        if (lens == model.lenses.end())
+            lens = model.lenses
+                       .emplace(image.camera_id,
+                                lens_of(found->second,
+                                        files.cameras.string() + ": camera " + std::to_string(image.camera_id)))
+                       .first;
         Camera camera;
         camera.name = image.name;
-        const auto distortion = apply_intrinsics(
-            found->second, files.cameras.string() + ": camera " + std::to_string(image.camera_id), camera);
-        if (!distortion.empty() && warnings &&
-            std::find(warned.begin(), warned.end(), image.camera_id) == warned.end()) {
-            std::string values;
-            for (double d : distortion) values += (values.empty() ? "" : ", ") + std::to_string(d);
-            warnings->push_back(files.cameras.string() + ": camera " + std::to_string(image.camera_id) + " (" +
-                                found->second.model + "): distortion (" + values +
-                                ") is ignored; images are treated as undistorted pinhole images");
-            warned.push_back(image.camera_id);
-        }
+        camera.width = lens->second.width;
+        camera.height = lens->second.height;
+        camera.fx = lens->second.fx;
+        camera.fy = lens->second.fy;
+        camera.cx = lens->second.cx;
+        camera.cy = lens->second.cy;
         camera.rotation = rotation_of(image.qvec, at);
         camera.translation = {image.tvec[0], image.tvec[1], image.tvec[2]};
         detail::check_camera(camera, at);
-        cameras.push_back(std::move(camera));
+        model.cameras.push_back(std::move(camera));
+        model.camera_ids.push_back(image.camera_id);
     }
-    return cameras;
+    return model;
+}
+
+std::vector<Camera> read_colmap_cameras(const fs::path& dir, std::vector<std::string>* warnings) {
+    detail::ColmapCameras model = detail::read_colmap_lens_cameras(dir);
+    for (const auto& [id, lens] : model.lenses) {
+        if (!warnings || !lens.distorted()) continue;
+        warnings->push_back(model.cameras_file.string() + ": camera " + std::to_string(id) + " (" +
+                            lens.description() +
+                            "): distortion is ignored; images are treated as undistorted pinhole images (training "
+                            "from the data folder undistorts them)");
+    }
+    return std::move(model.cameras);
 }
 
 }  // namespace vksplat::io

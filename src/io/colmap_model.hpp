@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "vksplat/camera/camera.hpp"
+
 namespace vksplat::io::detail {
 
 struct ColmapIntrinsics {
@@ -27,6 +29,33 @@ struct ColmapModel {
     std::map<uint32_t, ColmapIntrinsics> cameras;  // by camera id
     std::vector<ColmapImage> images;
 };
+
+// A COLMAP camera as the pinhole it is without its lens distortion, and that distortion.
+struct ColmapLens {
+    std::string model;
+    int width = 0, height = 0;
+    double fx = 0, fy = 0, cx = 0, cy = 0;      // principal point in our (and COLMAP's) pixel convention
+    std::vector<std::string> distortion_names;  // COLMAP's: "k", "k1", "p1", ...
+    // In COLMAP's order, which for every model read here is OpenCV's (k1 k2 p1 p2 k3 k4 k5 k6)
+    // with the terms the model lacks left out at the end.
+    std::vector<double> distortion;
+    bool distorted() const;  // any distortion term other than 0
+    std::string description() const;  // the model and its distortion, e.g. "OPENCV k1=-0.12 k2=0.03 p1=0 p2=0"
+};
+
+// A COLMAP model's images as cameras, sorted by image name, with the pinhole intrinsics of their
+// lens; `camera_ids[i]` is the COLMAP camera of cameras[i] and `lenses` holds those in use.
+struct ColmapCameras {
+    std::filesystem::path cameras_file;
+    std::vector<Camera> cameras;
+    std::vector<uint32_t> camera_ids;
+    std::map<uint32_t, ColmapLens> lenses;
+};
+
+// The model in dir, dir/sparse/0 or dir/0 (read_colmap_cameras's folders). Throws InputError for
+// a model other than SIMPLE_PINHOLE, PINHOLE, SIMPLE_RADIAL, RADIAL, OPENCV and FULL_OPENCV,
+// naming it.
+ColmapCameras read_colmap_lens_cameras(const std::filesystem::path& dir);
 
 // Each throws InputError naming the file, and the line or byte where it went wrong.
 // points3D readers append position (3 floats) and colour (3 floats in [0, 1]) per point.

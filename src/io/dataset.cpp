@@ -2,6 +2,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "io/colmap_model.hpp"
+#include "io/undistort.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 
@@ -13,7 +15,9 @@ namespace fs = std::filesystem;
 void read_colmap(Dataset& data, const fs::path& folder, uint64_t test_every) {
     data.format = "colmap";
     const fs::path model = fs::exists(folder / "sparse" / "0") ? folder / "sparse" / "0" : folder / "sparse";
-    data.cameras = read_colmap_cameras(model, &data.warnings);
+    detail::ColmapCameras colmap = detail::read_colmap_lens_cameras(model);
+    data.undistortion = detail::undistort_cameras(colmap, data.notices);
+    data.cameras = std::move(colmap.cameras);
     for (const auto& entry : fs::directory_iterator(model))
         if (entry.is_regular_file()) data.files.push_back(entry.path());
     data.points = read_sfm_points(model, &data.warnings);

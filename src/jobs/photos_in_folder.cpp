@@ -14,12 +14,12 @@
 namespace vksplat::jobs {
 
 PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background,
-                             double resolution_scale) {
+                             double resolution_scale, io::PhotoUndistortion undistortion) {
     if (!std::filesystem::is_directory(images_dir))
         throw InputError(images_dir.string(), "is not a folder of photos");
-    return [images_dir, background, resolution_scale](const Camera& camera) {
+    return [images_dir, background, resolution_scale, undistortion](const Camera& camera) {
         const std::filesystem::path file = io::find_image(images_dir, camera.name);
-        io::ImageRGB image = io::read_image_rgb(file, background);
+        io::ImageRGB image = undistortion.apply(camera.name, io::read_image_rgb(file, background), file);
         if (resolution_scale == 1.0) return image;  // checked_photo compares the sizes
         // The size is checked before resizing, as load_training_data scaled the camera: a photo of
         // another shape would otherwise be stretched to fit and trained on, distorted.

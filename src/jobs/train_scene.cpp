@@ -41,15 +41,6 @@ constexpr uint64_t kBytesPerPixel = 24 + 28 + 36;
 // The history records the count after every this many steps.
 constexpr uint64_t kSnapshotEvery = 500;
 
-// COLMAP reads distorted models as pinholes with a warning; training on them would fit the
-// distortion into the scene, so they are refused here.
-void refuse_distortion(const std::vector<std::string>& warnings, const fs::path& where) {
-    for (const auto& warning : warnings)
-        if (warning.find("distortion") != std::string::npos)
-            throw InputError(where.string(), warning + "; training needs undistorted photos and a PINHOLE or "
-                                                       "SIMPLE_PINHOLE model (COLMAP's image_undistorter makes them)");
-}
-
 // The box random starting points fill for INRIA cameras without points: centred where the cameras
 // look together, as wide as the median camera sees at its distance from there (what the
 // photos can show). For lego this is the reference's +-1.3 box within 10%. Without a common
@@ -169,7 +160,6 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     if (!(resolution_scale > 0 && resolution_scale <= 1))
         throw InputError("--resolution-scale " + std::to_string(resolution_scale), "must lie in (0, 1]");
     io::Dataset dataset = io::read_dataset(data_dir, recipe.test_every);
-    if (dataset.format == "colmap") refuse_distortion(dataset.warnings, data_dir / "sparse");
     if (!fs::is_directory(dataset.images_dir))
         throw InputError(dataset.images_dir.string(), "no such folder of photos");
     TrainingData data;
@@ -178,6 +168,8 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     data.images_dir = dataset.images_dir;
     data.inputs = std::move(dataset.files);
     data.warnings = std::move(dataset.warnings);
+    data.notices = std::move(dataset.notices);
+    data.undistortion = std::move(dataset.undistortion);
     data.folder = data_dir;
     // Where the data names no split (an INRIA file without "split"), INRIA's convention: the first
     // 13 cameras are held out, and a dozen cameras or fewer are all test and all training views.

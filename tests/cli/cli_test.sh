@@ -414,5 +414,17 @@ fi
 expect sweep-refusal-names-force 2 "(--force replaces it)" -- "$vksplat" sweep "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
 
+# A COLMAP data folder whose camera has an OPENCV lens (the top camera): trained from its photo
+# undistorted at load, as the log says; a fisheye lens is refused by its model's name.
+mkdir -p "$work/colmap_lens/sparse/0" "$work/colmap_lens/images" && cp "$work/photos/top.png" "$work/colmap_lens/images/"
+echo "1 OPENCV 80 60 70 70 40 30 -0.1 0.01 0.001 0" >"$work/colmap_lens/sparse/0/cameras.txt"
+printf '1 0 1 0 0 0 0 5 1 top.png\n\n' >"$work/colmap_lens/sparse/0/images.txt"
+printf '1 0 0 0 200 200 200 0.5\n2 0.2 0.1 0 100 100 100 0.5\n' >"$work/colmap_lens/sparse/0/points3D.txt"
+expect train-undistorts-opencv-lens 0 "camera 1 (OPENCV k1=-0.1 k2=0.01 p1=0.001 p2=0): photos undistorted to PINHOLE fx=" \
+  -- "$vksplat" train "$work/colmap_lens" -o "$work/trained_lens" --iters 5 --test-every 0 --quiet
+sed -i 's/OPENCV/OPENCV_FISHEYE/' "$work/colmap_lens/sparse/0/cameras.txt"
+expect train-refuses-fisheye-lens 2 "camera model OPENCV_FISHEYE is not supported" -- "$vksplat" train \
+  "$work/colmap_lens" -o "$work/trained_fisheye" --iters 5 --test-every 0
+
 echo "cli: $passed passed, $failed failed"
 [ $failed -eq 0 ]

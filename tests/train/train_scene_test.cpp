@@ -224,19 +224,37 @@ TEST_F(TrainScene, WithNoHeldOutViewsNoTestQualityIsWritten) {
     EXPECT_TRUE(metrics["test_ssim"].is_null()) << metrics["test_ssim"];
 }
 
-TEST_F(TrainScene, RefusesDistortedCamerasAndMissingData) {
+TEST_F(TrainScene, UndistortsLensesItCanAndRefusesOtherModelsAndMissingData) {
     const fs::path dir = fresh_test_dir("train_scene_refusals");
     EXPECT_THROW(jobs::load_training_data(dir, {}, 1.0, 0), InputError);
     fs::create_directories(dir / "sparse" / "0");
-    std::ofstream(dir / "sparse" / "0" / "cameras.txt") << "1 OPENCV 64 48 50 50 32 24 0.1 0.01 0 0\n";
+    std::ofstream(dir / "sparse" / "0" / "cameras.txt") << "1 OPENCV_FISHEYE 64 48 50 50 32 24 0.1 0.01 0 0\n";
     std::ofstream(dir / "sparse" / "0" / "images.txt") << "1 1 0 0 0 0 0 4 1 a.png\n\n";
     std::ofstream(dir / "sparse" / "0" / "points3D.txt") << "1 0 0 0 255 0 0 0.5\n";
+    jobs::TrainRecipe all_train;
+    all_train.test_every = 0;
     try {
-        jobs::load_training_data(dir, {}, 1.0, 0);
-        FAIL() << "a distorted camera model was accepted";
+        jobs::load_training_data(dir, all_train, 1.0, 0);
+        FAIL() << "a fisheye camera model was accepted";
     } catch (const InputError& e) {
-        EXPECT_NE(std::string(e.what()).find("OPENCV"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("model OPENCV_FISHEYE is not supported"), std::string::npos) << e.what();
     }
+
+    // OPENCV is undistorted (io/undistort_test.cpp checks how well): a pinhole camera, and its
+    // photo remapped when photos_in_folder reads it with the data's undistortion.
+    std::ofstream(dir / "sparse" / "0" / "cameras.txt") << "1 OPENCV 64 48 50 50 32 24 0.1 0.01 0 0\n";
+    fs::create_directories(dir / "images");
+    std::vector<float> ramp(64 * 48 * 3);
+    for (size_t i = 0; i < ramp.size(); ++i) ramp[i] = float(i % 192) / 191;
+    io::write_png_rgb(dir / "images" / "a.png", 64, 48, ramp.data(), 16);
+    const jobs::TrainingData data = jobs::load_training_data(dir, all_train, 1.0, 0);
+    ASSERT_EQ(data.notices.size(), 1u);
+    EXPECT_NE(data.notices[0].find("photos undistorted to PINHOLE"), std::string::npos) << data.notices[0];
+    EXPECT_NE(data.cameras[0].fx, 50.0);
+    const io::ImageRGB photo = io::read_image_rgb(dir / "images" / "a.png", {0, 0, 0});
+    const io::ImageRGB read = jobs::photos_in_folder(data.images_dir, {0, 0, 0}, 1.0, data.undistortion)(data.cameras[0]);
+    EXPECT_EQ(read.width, 64);
+    EXPECT_NE(read.rgb, photo.rgb);
 }
 
 TEST(TrainingData, AnInriaFolderIsSplitByItsSplitFields) {

@@ -43,6 +43,7 @@ int run_train(const TrainArgs& args) {
     const jobs::TrainingData data =
         jobs::load_training_data(args.data, options.recipe, args.resolution_scale, args.seed);
     for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    for (const auto& notice : data.notices) std::fprintf(stderr, "%s\n", notice.c_str());
     gpu::Context context(args.gpu.context_options());
     Renderer renderer(context);
     RenderSettings settings;
@@ -55,7 +56,8 @@ int run_train(const TrainArgs& args) {
                  data.initial.size(), context.info().name.c_str());
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
     const auto result = jobs::train_scene(
-        context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale), options,
+        context, data, jobs::photos_in_folder(data.images_dir, options.background, args.resolution_scale,
+                                             data.undistortion), options,
         measure, [&](const train::LoopStatus& s) {
             if (args.quiet && s.iteration != s.iterations) return;
             std::fprintf(stderr, "%siteration %llu/%llu  %zu Gaussians  loss %.4f  train PSNR %.2f dB  %.0f s, %.0f s left%s",

@@ -17,8 +17,9 @@ namespace vksplat::io {
 std::vector<Camera> read_inria_cameras(const std::filesystem::path& path);
 
 // A COLMAP model: `dir` holds cameras.bin + images.bin or cameras.txt + images.txt, or has them in
-// dir/sparse/0 or dir/0. Models PINHOLE and SIMPLE_PINHOLE are exact; SIMPLE_RADIAL, RADIAL and
-// OPENCV are read as pinholes, with a warning per COLMAP camera that its distortion is ignored.
+// dir/sparse/0 or dir/0. Models PINHOLE and SIMPLE_PINHOLE are exact; SIMPLE_RADIAL, RADIAL, OPENCV
+// and FULL_OPENCV are read as pinholes, with a warning per COLMAP camera that its distortion is
+// ignored (read_dataset undistorts them instead); other models are refused, by name.
 // Cameras are sorted by image name; name = the image's name.
 std::vector<Camera> read_colmap_cameras(const std::filesystem::path& dir, std::vector<std::string>* warnings = nullptr);
 

@@ -16,6 +16,7 @@
 
 #include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
+#include "vksplat/io/dataset.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/eval/quality.hpp"
@@ -28,12 +29,13 @@ namespace vksplat::jobs {
 // The photo of a camera, composited on the background where it has alpha. Throws InputError
 // naming the file when it is missing or unreadable.
 using PhotoSource = std::function<io::ImageRGB(const Camera&)>;
-// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb. With a
+// Photos found in a folder by camera name (io::find_image), read with io::read_image_rgb, and
+// undistorted where `undistortion` (a data set's, io::Dataset) holds the camera. With a
 // resolution_scale other than 1 the cameras were scaled by it (jobs::load_training_data): each photo
 // must scale to its camera's size exactly (else InputError naming the file; never stretched) and is
 // resized to it by area averaging.
 PhotoSource photos_in_folder(const std::filesystem::path& images_dir, const std::array<float, 3>& background,
-                             double resolution_scale = 1.0);
+                             double resolution_scale = 1.0, io::PhotoUndistortion undistortion = {});
 
 // The photo of `camera` read through `photos`: refused (InputError naming the camera) when its
 // size is not the camera's.

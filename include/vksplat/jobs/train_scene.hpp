@@ -23,6 +23,7 @@
 
 #include "vksplat/camera/camera.hpp"
 #include "vksplat/gpu/context.hpp"
+#include "vksplat/io/dataset.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/train/budget_strategy.hpp"
@@ -60,7 +61,9 @@ struct TrainingData {
     std::vector<size_t> train_views, test_views;
     GaussianCloud initial;
     std::filesystem::path images_dir;   // where the photos are found by camera name
+    io::PhotoUndistortion undistortion; // for photos of COLMAP cameras with lens distortion (photos_in_folder)
     std::vector<std::string> warnings;
+    std::vector<std::string> notices;   // what was done to the data, e.g. photos undistorted
     std::filesystem::path folder;       // the data folder, to name the run
     std::vector<std::filesystem::path> inputs;  // the camera and point files read: never written over
     bool held_out = true;               // no test view is also a training view (ViewSplit::held_out)
