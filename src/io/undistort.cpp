@@ -12,7 +12,7 @@ namespace vksplat::io {
 namespace detail {
 namespace {
 
-// The pinhole of a lens's undistorted photos, and the remap that makes them.
+// The pinhole of a lens's undistorted photos, and what remaps the photos to it.
 struct Undistorted {
     double fx, fy, cx, cy;
     std::shared_ptr<const PhotoUndistortion::Lens> remap;
@@ -41,11 +41,8 @@ Undistorted undistort_lens(const ColmapLens& lens) {
     const cv::Size centres(std::max(1, lens.width - 1), std::max(1, lens.height - 1));
     const cv::Matx33d undistorted =
         cv::getOptimalNewCameraMatrix(distorted, terms, centres, 0.0, size, nullptr, false);
-    auto remap = std::make_shared<PhotoUndistortion::Lens>();
-    remap->width = lens.width;
-    remap->height = lens.height;
-    cv::initUndistortRectifyMap(distorted, terms, cv::noArray(), undistorted, size, CV_16SC2, remap->map1,
-                                remap->map2);
+    auto remap = std::make_shared<PhotoUndistortion::Lens>(
+        PhotoUndistortion::Lens{lens.width, lens.height, distorted, std::move(terms), undistorted});
     return {undistorted(0, 0), undistorted(1, 1), undistorted(0, 2) + 0.5, undistorted(1, 2) + 0.5, std::move(remap)};
 }
 
@@ -89,11 +86,14 @@ ImageRGB PhotoUndistortion::apply(const std::string& camera_name, ImageRGB photo
                                             ", but the COLMAP camera of '" + camera_name + "' is " +
                                             std::to_string(lens.width) + "x" + std::to_string(lens.height) +
                                             ": its lens distortion cannot be taken out");
+    cv::Mat map1, map2;  // fixed point: undistorted pixel -> position in the photo
+    cv::initUndistortRectifyMap(lens.distorted, lens.terms, cv::noArray(), lens.undistorted,
+                                cv::Size(lens.width, lens.height), CV_16SC2, map1, map2);
     cv::Mat source(photo.height, photo.width, CV_32FC3, photo.rgb.data());
     ImageRGB out{photo.width, photo.height, std::vector<float>(photo.rgb.size())};
     cv::Mat target(out.height, out.width, CV_32FC3, out.rgb.data());
     // Replicated edges only for the sub-pixel rim alpha 0's frame may reach past the photo.
-    cv::remap(source, target, lens.map1, lens.map2, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
+    cv::remap(source, target, map1, map2, cv::INTER_LINEAR, cv::BORDER_REPLICATE);
     return out;
 }
 
