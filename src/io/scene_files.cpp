@@ -60,7 +60,7 @@ std::string scene_format_named(const fs::path& path, const std::string& format) 
 }
 
 std::vector<std::string> scene_formats() {
-    return {"ply", "compressed-ply", "splat", "spz", "spz-v3", "gsplat-pt"};
+    return {"ply", "compressed-ply", "splat", "spz", "spz-v4", "gsplat-pt"};
 }
 
 std::string scene_format_of(const fs::path& path) {
@@ -77,13 +77,13 @@ GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, 
     if (name == "ply") return read_ply(path, notes);
     if (name == "compressed-ply") return read_compressed_ply(path, notes);
     if (name == "splat") return read_splat(path, notes);
-    if (name == "spz" || name == "spz-v3") return read_spz(path, notes);
+    if (name == "spz" || name == "spz-v4") return read_spz(path, notes);
     return read_gsplat_checkpoint(path, notes);
 }
 
 std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
     const std::string writable = std::string("; the scene formats vksplat writes are ") + kWritableExtensions +
-                                 " (or by name: ply, compressed-ply, splat, spz, spz-v3)";
+                                 " (or by name: ply, compressed-ply, splat, spz, spz-v4)";
     if (format.empty()) {
         const auto named = format_by_extension(path);
         const std::string extension = path.extension().string();
@@ -105,7 +105,7 @@ void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mod
     if (name == "ply") return write_ply(cloud, path, mode);
     if (name == "compressed-ply") return write_compressed_ply(cloud, path, mode);
     if (name == "splat") return write_splat(cloud, path, mode);
-    return write_spz(cloud, path, mode, name == "spz-v3" ? 3 : 4);
+    return write_spz(cloud, path, mode, name == "spz-v4" ? 4 : 3);
 }
 
 }  // namespace vksplat::io

@@ -19,7 +19,7 @@ GaussianCloud tame_cloud(size_t count, int sh_degree) {
 
 TEST(FormatsSceneFiles, FormatsAreListed) {
     EXPECT_EQ(scene_formats(),
-              (std::vector<std::string>{"ply", "compressed-ply", "splat", "spz", "spz-v3", "gsplat-pt"}));
+              (std::vector<std::string>{"ply", "compressed-ply", "splat", "spz", "spz-v4", "gsplat-pt"}));
 }
 
 TEST(FormatsSceneFiles, ExtensionChoosesTheFormat) {
@@ -66,7 +66,12 @@ TEST(FormatsSceneFiles, ExplicitFormatOverridesTheExtension) {
     ScratchDir dir;
     const GaussianCloud cloud = tame_cloud(10, 1);
     write_scene(cloud, dir / "scene.bin", WriteMode::refuse_existing, "spz");
-    EXPECT_EQ(read_bytes(dir / "scene.bin").substr(0, 4), "NGSP");
+    const std::string bytes = read_bytes(dir / "scene.bin");
+    ASSERT_GE(bytes.size(), 2u);
+    EXPECT_EQ(static_cast<uint8_t>(bytes[0]), 0x1f);
+    write_scene(cloud, dir / "scene4.bin", WriteMode::refuse_existing, "SPZ-V4");
+    EXPECT_EQ(read_bytes(dir / "scene4.bin").substr(0, 4), "NGSP");
+    EXPECT_EQ(read_scene(dir / "scene4.bin", nullptr, "spz").size(), 10u);
     EXPECT_EQ(read_scene(dir / "scene.bin", nullptr, "SPZ").size(), 10u);
     write_scene(cloud, dir / "other.dat", WriteMode::refuse_existing, "ply");
     expect_same_cloud(read_scene(dir / "other.dat", nullptr, "ply"), cloud);
@@ -85,7 +90,7 @@ TEST(FormatsSceneFiles, UnknownNamesAndReadOnlyFormatsAreRefused) {
                        {"scene.obj", "cannot write a scene as '.obj'", writable});
     expect_input_error([&] { check_scene_writable(dir / "noext"); }, {"noext", "without an extension", writable});
     expect_input_error([&] { write_scene(cloud, dir / "scene.ply", WriteMode::refuse_existing, "ksplat"); },
-                       {"scene.ply", "unknown scene format 'ksplat'", "ply, compressed-ply, splat, spz, spz-v3, gsplat-pt"});
+                       {"scene.ply", "unknown scene format 'ksplat'", "ply, compressed-ply, splat, spz, spz-v4, gsplat-pt"});
     expect_input_error([&] { write_scene(cloud, dir / "scene.pt"); },
                        {"scene.pt", "cannot write format 'gsplat-pt'", "read-only", writable});
     expect_input_error([&] { write_scene(cloud, dir / "scene.ply", WriteMode::refuse_existing, "gsplat-pt"); },

@@ -1,5 +1,5 @@
 // Niantic SPZ: files built byte by byte decode as the specification says (versions 2, 3 and 4), a
-// written cloud (version 4 by default, 3 on request) reads back within SPZ's quantisation, the fixture made by splat-transform decodes to
+// written cloud (version 3 by default, 4 on request) reads back within SPZ's quantisation, the fixture made by splat-transform decodes to
 // what splat-transform decoded, and malformed files are refused with a useful message.
 #include <gtest/gtest.h>
 
@@ -320,13 +320,13 @@ TEST(FormatsSpz, RoundTripWithinQuantisation) {
         }
 }
 
-TEST(FormatsSpz, WriterWritesVersion4UnlessAskedFor3) {
+TEST(FormatsSpz, WriterWritesVersion3UnlessAskedFor4) {
     ScratchDir dir;
     const GaussianCloud cloud = representable_cloud(5, 1, 3);
     write_spz(cloud, dir / "default.spz");
-    EXPECT_EQ(read_bytes(dir / "default.spz").substr(0, 5), std::string("NGSP\x04"));
-    write_scene(cloud, dir / "named.spz", WriteMode::refuse_existing, "spz-v3");
-    EXPECT_EQ(static_cast<uint8_t>(read_bytes(dir / "named.spz")[0]), 0x1f);
+    EXPECT_EQ(static_cast<uint8_t>(read_bytes(dir / "default.spz")[0]), 0x1f);
+    write_scene(cloud, dir / "named.spz", WriteMode::refuse_existing, "spz-v4");
+    EXPECT_EQ(read_bytes(dir / "named.spz").substr(0, 5), std::string("NGSP\x04"));
     expect_input_error([&] { write_spz(cloud, dir / "v2.spz", WriteMode::refuse_existing, 2); },
                        {"v2.spz", "cannot write SPZ version 2"});
 }
@@ -335,10 +335,10 @@ TEST(FormatsSpz, WriterUsesFewerFractionalBitsForLargeScenes) {
     ScratchDir dir;
     GaussianCloud original = representable_cloud(20, 1, 5);
     original.positions[7] = 30000.0f;  // needs 15 integer bits: at most 8 fractional
-    write_spz(original, dir / "large.spz");
-    const std::string header = read_bytes(dir / "large.spz");
+    write_spz(original, dir / "large.spz", WriteMode::refuse_existing, 4);
+    const std::string header = read_bytes(dir / "large.spz");  // version 4: the header is not compressed
     EXPECT_EQ(static_cast<int>(header[13]), 8);
-    EXPECT_EQ(static_cast<int>(header[4]), 4);  // version 4: the header is not compressed
+    EXPECT_EQ(static_cast<int>(header[4]), 4);
     expect_within_spz_quantisation(original, read_spz(dir / "large.spz"), 1.0 / 256);
 }
 

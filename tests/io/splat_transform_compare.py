@@ -1,14 +1,17 @@
 #!/usr/bin/env python3
-"""The scene and the comparison for tests/io/splat_transform_test.sh, which checks our .splat and
-.spz writers (and our .spz reader) against an independent implementation, PlayCanvas splat-transform.
+"""The scene and the comparison for tests/io/splat_transform_test.sh, which checks our .splat, .spz
+and compressed .ply writers (and our .spz reader) against an independent implementation, PlayCanvas
+splat-transform.
 
   splat_transform_compare.py scene OUT.ply
       writes a float INRIA PLY of 300 Gaussians, SH degree 3, whose values lie where every format
       can hold them (see the ranges below), with unnormalised quaternions of both signs.
   splat_transform_compare.py compare CASE ORIGINAL.ply DECODED.ply
       compares what a decoder made of an encoded ORIGINAL, attribute by attribute, Gaussian by
-      Gaussian in file order (neither our writers nor these decoders reorder), against CASE's
-      tolerances; prints the largest error of each attribute; exits 1 if any exceeds its tolerance.
+      Gaussian, against CASE's tolerances; prints the largest error of each attribute; exits 1 if
+      any exceeds its tolerance. Gaussians are paired in file order, except for the compressed PLY,
+      whose writer reorders them (Morton order): there each decoded Gaussian is paired with the
+      original nearest to it, and every original must be paired once.
 
 Plain float PLY is exact both ways, so each comparison measures one encoder and one decoder.
 Standard library only.
@@ -32,7 +35,8 @@ TOLERANCES = {
     # splat-transform as b/127.5-1, which is up to 0.0078 above b/128-1: 0.0117 a component
     # before normalising, which leaves it about the same. No SH beyond DC.
     "splat": {"position": 1e-6, "log_scale": 2e-6, "f_dc": 0.0070, "opacity": 0.0020, "rotation": 0.0120},
-    # Ours -> .spz (version 3) -> splat-transform (Niantic's own decoder, compiled to WebAssembly).
+    # Ours -> .spz (version 3 by default, 4 by --format spz-v4: the same values) -> splat-transform
+    # (Niantic's own decoder, compiled to WebAssembly).
     # Positions 24-bit fixed point with 12 fractional bits (0.5/4096 = 1.22e-4); log scales as
     # (s+10)*16 in a byte (0.5/16 = 0.03125); colour as f_dc*0.15*255+127.5 in a byte
     # (0.5/(0.15*255) = 0.01307); opacity a byte (0.00196); rotations "smallest three", 9 bits
@@ -41,12 +45,20 @@ TOLERANCES = {
     # (the largest is at least 1/2); SH as v*128+128 in a byte (0.5/128 = 0.0039).
     "spz": {"position": 1.23e-4, "log_scale": 0.0313, "f_dc": 0.0131, "opacity": 0.0020, "rotation": 0.0021,
             "sh_degree_1": 0.0040, "sh_degree_2_3": 0.0040},
-    # splat-transform -> .spz (version 3) -> our reader. As above, except that splat-transform
+    # splat-transform -> .spz (version 4, its default, or 3) -> our reader. As above, except that splat-transform
     # quantises SH more coarsely (Niantic's defaults): degree 1 to 5 bits (buckets of 8 byte
     # steps: 0.5/128 + 4/128 = 0.0352), degrees 2 and 3 to 4 bits (buckets of 16: 0.5/128 +
     # 8/128 = 0.06641).
     "spz_theirs": {"position": 1.23e-4, "log_scale": 0.0313, "f_dc": 0.0131, "opacity": 0.0020, "rotation": 0.0021,
                    "sh_degree_1": 0.0352, "sh_degree_2_3": 0.0665},
+    # Ours -> .compressed.ply -> splat-transform. Each value relative to its chunk of 256's range, the
+    # ranges within the scene's: positions (span 16) 11 bits for x and z, 10 for y (16/1023/2 =
+    # 0.00782); log scales (span 7) 7/1023/2 = 0.00342; colour 0.5 + SH_C0 * f_dc (span 0.96) in
+    # 8 bits: 0.96/255/2/SH_C0 = 0.00667; opacity after the sigmoid 0.5/255 = 0.00196; rotations
+    # smallest three in 10 bits, sqrt(2)/1023/2 = 0.00069 each, the largest within 3x that (0.0021);
+    # SH a byte over [-4, 4]: half of 8/256 = 0.0157.
+    "compressed_ply": {"position": 0.0079, "log_scale": 0.0035, "f_dc": 0.0067, "opacity": 0.0020, "rotation": 0.0021,
+                       "sh_degree_1": 0.0157, "sh_degree_2_3": 0.0157},
 }
 
 
@@ -111,12 +123,33 @@ def sigmoid(x):
     return 1 / (1 + math.exp(-x))
 
 
+def nearest_original(original, decoded, count):
+    """For each decoded Gaussian the index of the original nearest to it by position; exits unless
+    that pairs them one to one."""
+    pairs = []
+    for i in range(count):
+        p = [decoded[axis][i] for axis in "xyz"]
+        pairs.append(min(range(count), key=lambda j: sum((original[axis][j] - p[a]) ** 2 for a, axis in enumerate("xyz"))))
+    if len(set(pairs)) != count:
+        sys.exit(f"the decoded Gaussians pair with only {len(set(pairs))} of the {count} originals")
+    return pairs
+
+
 def compare(case, original_path, decoded_path):
     limits = TOLERANCES[case]
     original, count = read_ply(original_path)
     decoded, decoded_count = read_ply(decoded_path)
     if decoded_count != count:
         sys.exit(f"{case}: {decoded_path} holds {decoded_count} Gaussians, {original_path} {count}")
+    if case == "compressed_ply":
+        pairs = nearest_original(original, decoded, count)
+        reordered = {}
+        for name, values in decoded.items():
+            column = [0.0] * count
+            for i, j in enumerate(pairs):
+                column[j] = values[i]
+            reordered[name] = column
+        decoded = reordered
     rest = sum(1 for name in decoded if name.startswith("f_rest_"))
     expected_rest = SH_REST if "sh_degree_1" in limits else 0
     if rest != expected_rest:

@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
-# Our .splat and .spz writers checked by an independent decoder, and our .spz reader by an
-# independent encoder: PlayCanvas splat-transform (npm; tools/bootstrap.sh test installs the pinned
-# version in .npm-tools/). There is no compressed-PLY writer of ours to check.
+# Our .splat, .spz (versions 4 and 3) and compressed .ply writers checked by an independent decoder,
+# and our .spz reader by an independent encoder: PlayCanvas splat-transform (npm; tools/bootstrap.sh
+# test installs the pinned version in .npm-tools/).
 #   splat_transform_test.sh VKSPLAT_BINARY WORK_DIR
-# A generated scene (tests/io/splat_transform_compare.py) is written as .splat and .spz by
-# `vksplat convert`; splat-transform decodes each to a float PLY, compared with the scene within
-# each format's quantisation. Then splat-transform encodes the scene as .spz (version 3, the newest
-# we read) and `vksplat convert` decodes it. Exits 77 (skipped) when splat-transform is not there.
+# A generated scene (tests/io/splat_transform_compare.py) is written as .splat, .spz (3, our
+# default, and 4) and .compressed.ply by `vksplat convert`; splat-transform decodes each to a float
+# PLY, compared with the scene within each format's quantisation. Then splat-transform encodes the
+# scene as .spz, version 4 (its default) and 3, and `vksplat convert` decodes each. Exits 77
+# (skipped) when splat-transform is not there.
 set -euo pipefail
 vksplat=$(realpath "$1")
 work=$2
@@ -28,12 +29,27 @@ compare() { python3 "$here/splat_transform_compare.py" compare "$@"; }
 
 run python3 "$here/splat_transform_compare.py" scene scene.ply
 status=0
-for format in splat spz; do
+# starts_with FILE BYTES: the file is of the version the test means (SPZ 4 "NGSP", SPZ 3 gzip).
+starts_with() {
+  [ "$(head -c ${#2} "$1")" = "$2" ] || { echo "FAILED: $1 does not start with '$2'" >&2; status=1; }
+}
+for format in splat spz compressed.ply; do
+  case=${format/./_}
   run "$vksplat" convert scene.ply "ours.$format"
-  run "$splat_transform" "ours.$format" "theirs_from_ours_$format.ply"
-  compare "$format" scene.ply "theirs_from_ours_$format.ply" || status=1
+  run "$splat_transform" "ours.$format" "theirs_from_ours_$case.ply"
+  compare "$case" scene.ply "theirs_from_ours_$case.ply" || status=1
 done
-run "$splat_transform" scene.ply --spz-version 3 theirs.spz
-run "$vksplat" convert theirs.spz ours_from_theirs_spz.ply
-compare spz_theirs scene.ply ours_from_theirs_spz.ply || status=1
+starts_with ours.spz $'\x1f'
+head -c 2000 ours.compressed.ply | grep -qax "element chunk 2" ||
+  { echo "FAILED: ours.compressed.ply has no chunk element: not a compressed PLY" >&2; status=1; }
+run "$vksplat" convert scene.ply ours_v4.spz --format spz-v4
+starts_with ours_v4.spz NGSP
+run "$splat_transform" ours_v4.spz theirs_from_ours_spz_v4.ply
+compare spz scene.ply theirs_from_ours_spz_v4.ply || status=1
+for version in 4 3; do
+  run "$splat_transform" scene.ply --spz-version $version "theirs_v$version.spz"
+  run "$vksplat" convert "theirs_v$version.spz" "ours_from_theirs_spz_v$version.ply"
+  compare spz_theirs scene.ply "ours_from_theirs_spz_v$version.ply" || status=1
+done
+starts_with theirs_v4.spz NGSP
 exit $status
