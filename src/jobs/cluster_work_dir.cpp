@@ -7,9 +7,9 @@
 #include <regex>
 
 #include "vksplat/error.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/io/npy.hpp"
-#include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/prune/selection.hpp"
 
@@ -257,12 +257,12 @@ SavedClusterScores load_cluster_scores(size_t gaussians, const ClusterStageIo& i
 ClusterPruneResult write_pruned(const GaussianCloud& cloud, const std::vector<uint8_t>& keep, size_t clusters,
                                 const std::vector<int32_t>& cluster_of, const fs::path& out, const ClusterStageIo& io) {
     const GaussianCloud pruned = cloud.subset(keep);
-    io::write_ply(pruned, out, io.mode);
+    io::write_scene(pruned, out, io.mode);
     ClusterPruneResult result;
     result.count_before = cloud.size();
     result.count_after = pruned.size();
     result.bytes_before = cloud.ply_bytes();
-    result.bytes_after = pruned.ply_bytes();
+    result.bytes_after = fs::file_size(out);
     result.clusters = clusters;
     std::vector<uint8_t> cluster_kept(clusters, 0);
     for (size_t i = 0; i < keep.size(); ++i)
@@ -275,7 +275,7 @@ ClusterPruneResult write_pruned(const GaussianCloud& cloud, const std::vector<ui
 
 ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options, const fs::path& out,
                                const ClusterStageIo& io) {
-    io::check_writable(out, io.mode);
+    io::check_scene_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     if (options.selection.max_contribution_loss < 1 && saved.scores.contribution_raw.empty())
         throw InputError(scores_file(io).string(), "has no contribution column: run `vksplat cluster score` again, "
@@ -292,7 +292,7 @@ ClusterPruneResult prune_stage_to_budget(Renderer& renderer, const GaussianCloud
                                          const prune::QualityBudget& budget, const RenderSettings& settings,
                                          const fs::path& out, const ClusterStageIo& io,
                                          const std::function<void(const prune::BudgetProbe&)>& on_probe) {
-    io::check_writable(out, io.mode);
+    io::check_scene_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const std::vector<float> ranked_by = cluster::gaussian_scores(saved.scores, saved.cluster_of);
     const prune::Ranking ranking(ranked_by, prune::keep_all(cloud.size()));
@@ -308,7 +308,7 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
                                    const PhotoSource& photos, RecoverOptions recover, const SubjectMasks& subject,
                                    const fs::path& out, const ClusterStageIo& io,
                                    const std::function<void(const train::LoopStatus&)>& progress) {
-    io::check_writable(out, io.mode);
+    io::check_scene_writable(out, io.mode);
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
     for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
@@ -333,11 +333,11 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
                                            if (progress) progress(s);
                                        });
     const GaussianCloud& refitted = result.recover.cloud;
-    io::write_ply(refitted, out, io.mode);
+    io::write_scene(refitted, out, io.mode);
     result.prune.count_before = cloud.size();
     result.prune.count_after = refitted.size();
     result.prune.bytes_before = cloud.ply_bytes();
-    result.prune.bytes_after = refitted.ply_bytes();
+    result.prune.bytes_after = fs::file_size(out);
     result.prune.clusters = saved.scores.size();
     result.prune.clusters_dropped = selection.clusters_dropped;
     result.prune.contribution_dropped = selection.contribution_dropped;

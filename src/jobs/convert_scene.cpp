@@ -20,9 +20,8 @@ ConvertResult convert_scene(const fs::path& input, const fs::path& output, const
     // (or options) alone: an existing file there is about to be replaced, whatever it holds.
     result.input_format = options.input_format.empty() ? io::scene_format_of(input)
                                                        : io::scene_format_named(input, options.input_format);
-    result.output_format = io::scene_format_named(output, options.output_format);
     io::refuse_input_as_output(output, {input});
-    io::check_writable(output, options.mode);
+    result.output_format = io::check_scene_writable(output, options.mode, options.output_format);
 
     const GaussianCloud cloud = io::read_scene(input, &result.notes, result.input_format);
     result.gaussians = cloud.size();
@@ -33,9 +32,12 @@ ConvertResult convert_scene(const fs::path& input, const fs::path& output, const
         result.notes.push_back("SH degree " + std::to_string(result.input_sh_degree) + " reduced to " +
                                std::to_string(result.output_sh_degree) + ": " + result.output_format +
                                " holds only the base colour");
-    if (result.output_format == "spz")
+    if (result.output_format == "spz" || result.output_format == "spz-v4")
         result.notes.push_back("spz stores every value in fixed point: positions, colours, scales, rotations "
                                "and SH are rounded");
+    if (result.output_format == "compressed-ply")
+        result.notes.push_back("compressed-ply rounds every value within its chunk of 256 splats (and SH to 8 bits) "
+                               "and orders the splats along a Morton curve");
     return result;
 }
 

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "vksplat/error.hpp"
-#include "vksplat/io/ply.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
 
@@ -23,7 +23,9 @@ void check_options(const PruneOptions& options) {
     // a file the job reads: the scene, its cameras, a scores file.
     std::vector<fs::path> inputs = options.inputs;
     if (options.load_scores) inputs.push_back(*options.load_scores);
-    for (const auto& path : {std::optional<fs::path>(options.out), options.save_scores, options.save_totals}) {
+    io::refuse_input_as_output(options.out, inputs);
+    io::check_scene_writable(options.out, options.mode);  // a format its name says, and a file that may be written
+    for (const auto& path : {options.save_scores, options.save_totals}) {
         if (!path) continue;
         io::refuse_input_as_output(*path, inputs);
         io::check_writable(*path, options.mode);
@@ -193,9 +195,9 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     }
     result.sh_degree_after = pruned.sh_degree;
     result.count_after = pruned.size();
-    result.bytes_after = pruned.ply_bytes();
     result.after = eval::measure_quality(renderer, pruned, targets, options.settings, true);
-    io::write_ply(pruned, options.out, options.mode);
+    io::write_scene(pruned, options.out, options.mode);
+    result.bytes_after = fs::file_size(options.out);
     return result;
 }
 

@@ -99,7 +99,7 @@ expect convert-output-format-by-name 0 "to $work/impostor.ply (ply)" -- "$vkspla
   "$work/impostor.ply" --force
 expect convert-output-is-a-plain-ply 0 "Gaussians: 38605" -- "$vksplat" info "$work/impostor.ply"
 expect convert-read-only-format 2 "cannot write format 'gsplat-pt'" -- "$vksplat" convert "$work/demo.spz" "$work/x.pt"
-expect convert-unknown-extension 2 "unknown scene file extension '.obj'" -- "$vksplat" convert "$work/demo.spz" "$work/x.obj"
+expect convert-unknown-extension 2 "cannot write a scene as '.obj'" -- "$vksplat" convert "$work/demo.spz" "$work/x.obj"
 # Sweep: a quick one against the photo, then the refusal to overwrite its results.
 expect sweep 0 "wrote $work/sweep/report.html" -- "$vksplat" sweep "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --images "$work/photos" --background 1,1,1 --out "$work/sweep" \
@@ -279,7 +279,7 @@ expect prune-output-is-input 2 "in.ply: is an input of this command" -- "$vkspla
 same_file_or_fail finetune/prune "$work/in.ply" "$work/demo/demo.ply"
 same_file_or_fail finetune "$work/notes.json" "$work/cameras.json"
 [ ! -e "$work/out1.ply" ] && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: out1.ply written"; }
-expect finetune-unwritable-format 2 "out.xyz: unknown scene file extension" -- finetune_in --iters 5 -o "$work/out.xyz"
+expect finetune-unwritable-format 2 "out.xyz: cannot write a scene as '.xyz'" -- finetune_in --iters 5 -o "$work/out.xyz"
 expect finetune-missing-folder 2 "folder $work/nowhere does not exist" -- finetune_in --iters 5 -o "$work/nowhere/out.ply"
 [ ! -e "$work/out.xyz.checkpoint" ] && passed=$((passed + 1)) ||
   { failed=$((failed + 1)); echo "FAILED: a refused output still left a checkpoint"; }
@@ -413,6 +413,55 @@ else
 fi
 expect sweep-refusal-names-force 2 "(--force replaces it)" -- "$vksplat" sweep "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --images "$work/photos" --out "$work/sweep" --methods blend --fractions 0
+
+# Scene outputs: every command writes the format its output's name says, and refuses a name no
+# writer has before any work (exit 2, nothing written).
+# starts_with NAME FILE BYTES: FILE begins with BYTES (e.g. an SPZ 4's "NGSP", a PLY's "ply").
+starts_with() {
+  if [ "$(head -c ${#3} "$2" 2>/dev/null)" = "$3" ]; then passed=$((passed + 1)); else
+    failed=$((failed + 1)); echo "FAILED: $1: $2 does not start with '$3'"; fi
+}
+# refused_before_work NAME OUTPUT PATTERN -- COMMAND...: exit 2 with PATTERN, no progress line, no OUTPUT.
+refused_before_work() {
+  local name=$1 out=$2 pattern=$3
+  shift 4
+  local output status
+  output=$("$@" 2>&1)
+  status=$?
+  if [ $status -eq 2 ] && grep -qF -- "$pattern" <<<"$output" && ! grep -qE "scored views|\[regions\]" <<<"$output" &&
+     [ ! -e "$out" ]; then
+    passed=$((passed + 1))
+  else
+    failed=$((failed + 1)); echo "FAILED: $name (exit $status, expected 2 before any work and no $out)"
+    echo "$output" | sed 's/^/    /' | tail -n 5
+  fi
+}
+expect prune-writes-spz 0 "wrote $work/half.spz" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method opacity --ratio 0.5 -o "$work/half.spz"
+starts_with prune-spz-is-spz-3 "$work/half.spz" $'\x1f'
+expect prune-spz-reads-back 0 "Gaussians: 19302" -- "$vksplat" info "$work/half.spz"
+expect prune-writes-compressed-ply 0 "bytes written" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --ratio 0.5 -o "$work/half.compressed.ply"
+expect prune-compressed-ply-reads-back 0 "Gaussians: 19302" -- "$vksplat" info "$work/half.compressed.ply"
+if head -c 400 "$work/half.compressed.ply" | grep -qa "^element chunk 76$"; then passed=$((passed + 1)); else
+  failed=$((failed + 1)); echo "FAILED: prune -o half.compressed.ply wrote no chunk element"; fi
+refused_before_work prune-refuses-obj "$work/x.obj" "x.obj: cannot write a scene as '.obj'" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method blend --ratio 0.5 -o "$work/x.obj"
+refused_before_work prune-refuses-read-only "$work/x.pt" ".ply, .compressed.ply, .splat, .spz" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method blend --ratio 0.5 -o "$work/x.pt"
+expect cluster-writes-splat 0 "wrote $work/half_clusters.splat" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.5 -o "$work/half_clusters.splat" --force
+expect cluster-splat-reads-back 0 "SH degree: 0" -- "$vksplat" info "$work/half_clusters.splat"
+refused_before_work cluster-refuses-obj "$work/x.obj" "x.obj: cannot write a scene as '.obj'" -- "$vksplat" cluster run \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw_obj" --delta-dist auto -o "$work/x.obj"
+[ ! -e "$work/cw_obj" ] && passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: cluster run -o x.obj made its work folder"; }
+expect convert-writes-compressed-ply 0 "to $work/demo.compressed.ply (compressed-ply)" -- "$vksplat" convert \
+  "$work/demo/demo.ply" "$work/demo.compressed.ply"
+expect convert-writes-spz-4 0 "(spz-v4)" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo_v4.spz" --format spz-v4
+starts_with convert-spz-4-is-ngsp "$work/demo_v4.spz" "NGSP"
+expect convert-reads-spz-4 0 "Gaussians: 38605" -- "$vksplat" info "$work/demo_v4.spz"
+refused_before_work convert-refuses-obj "$work/y.obj" "y.obj: cannot write a scene as '.obj'" -- "$vksplat" convert \
+  "$work/demo/demo.ply" "$work/y.obj"
 
 # A COLMAP data folder whose camera has an OPENCV lens (the top camera): trained from its photo
 # undistorted at load, as the log says; a fisheye lens is refused by its model's name.

@@ -112,7 +112,8 @@ TEST(ConvertScene, MistakesAreRefusedBeforeWriting) {
     ScratchDir dir;
     io::write_scene(small_scene(), dir / "scene.ply");
     expect_input_error([&] { convert_scene(dir / "absent.ply", dir / "x.spz"); }, {"absent.ply", "no such file"});
-    expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "x.obj"); }, {"x.obj", "unknown scene file extension"});
+    expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "x.obj"); },
+                       {"x.obj", "cannot write a scene as '.obj'", ".compressed.ply"});
     expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "x.ply", {"", "ksplat"}); },
                        {"x.ply", "unknown scene format 'ksplat'"});
     expect_input_error([&] { convert_scene(dir / "scene.ply", dir / "x.pt"); }, {"x.pt", "cannot write format 'gsplat-pt'"});

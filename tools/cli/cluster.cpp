@@ -12,7 +12,7 @@
 #include "progress.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
-#include "vksplat/io/ply.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/jobs/cluster_work_dir.hpp"
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
@@ -70,7 +70,7 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
         ->excludes(threshold)
         ->excludes(ratio)
         ->excludes(contribution);
-    c.add_option("-o,--out", a.out, "pruned scene (.ply)")->required();
+    c.add_option("-o,--out", a.out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     c.add_option("--images", a.images, "photos: measure the test views against them too")->check(CLI::ExistingDirectory);
     c.add_option("--test-views", a.test_views, "views to measure on (default: the cameras' test split, else the first 13)");
     auto* subject = c.add_option("--subject", a.subject,
@@ -109,6 +109,9 @@ void print_scores(const char* what, const jobs::SubjectScores& s) {
 }
 
 int run_stages(ClusterArgs& args, unsigned stages) {
+    const io::WriteMode mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    // The pruned scene's name must say a format we write before the stages before it run.
+    if (stages & kPrune) io::check_scene_writable(args.out, mode);
     std::vector<std::string> warnings;
     GaussianCloud cloud = read_scene_file(args.scene);
     const SanitizeReport report = sanitize(cloud);
@@ -121,8 +124,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     auto& options = args.stage.options;
     options.selection.threshold = args.score_threshold;
     options.selection.ratio_of = cluster::parse_ratio_of(args.ratio_of);
-    jobs::ClusterStageIo io{args.work, args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing,
-                            log_line, {}};
+    jobs::ClusterStageIo io{args.work, mode, log_line, {}};
     std::filesystem::create_directories(args.work);
 
     std::unique_ptr<gpu::Context> context;
@@ -204,7 +206,8 @@ int run_stages(ClusterArgs& args, unsigned stages) {
         if (!result.budget)
             std::printf(", painting %.2f%% of the picture%s", 100.0 * result.contribution_dropped,
                         result.stopped_by_contribution ? " (stopped by --max-contribution-loss before the ratio)" : "");
-        std::printf("\nGaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu -> %zu bytes\nwrote %s\n", result.count_before, result.count_after,
+        std::printf("\nGaussians: %zu -> %zu (%.1f%% kept)\nsize: %zu bytes as PLY -> %zu bytes written\nwrote %s\n",
+                    result.count_before, result.count_after,
                     result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0,
                     result.bytes_before, result.bytes_after, args.out.c_str());
         if (result.count_after == 0) std::printf("warning: the pruned scene is empty\n");
@@ -212,7 +215,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
             std::printf("quality budget %.3f dB: kept %zu, drop %.3f dB (%zu probes)\n", *args.max_psnr_drop,
                         result.budget->kept, result.budget->drop, result.budget->probes.size());
         if (!args.images.empty()) {
-            const GaussianCloud pruned = io::read_ply(args.out);
+            const GaussianCloud pruned = io::read_scene(args.out);  // as written: what the user gets
             std::optional<jobs::SubjectSheets> sheets;
             if (!args.sheets.empty()) sheets = jobs::SubjectSheets{.dir = args.sheets, .mode = io.mode};
             const auto q =

@@ -32,10 +32,12 @@ int run_convert(const ConvertArgs& args) {
 void register_convert(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("convert", "rewrite a scene file in another format");
     command->footer(
-        "Formats: ply (INRIA 3DGS), splat (antimatter15), spz (Niantic) are read and written; compressed-ply\n"
-        "(PlayCanvas) and gsplat-pt (gsplat checkpoint) are read only. The extension picks the format\n"
-        "unless --format (output) or --input-format names it.\n"
-        "Example:\n  vksplat convert point_cloud.ply scene.spz\n  vksplat convert ckpt_29999.pt scene.ply --force");
+        "Formats: ply (INRIA 3DGS), compressed-ply (PlayCanvas, *.compressed.ply), splat (antimatter15) and\n"
+        "spz (Niantic; written as version 3, or 4 with --format spz-v4) are read and written; gsplat-pt\n"
+        "(gsplat checkpoint) is read only. The extension picks the format unless --format (output) or\n"
+        "--input-format names it; a .ply is read as its header says.\n"
+        "Example:\n  vksplat convert point_cloud.ply scene.spz\n  vksplat convert point_cloud.ply scene.compressed.ply\n"
+        "  vksplat convert ckpt_29999.pt scene.ply --force");
     auto args = std::make_shared<ConvertArgs>();
     std::string formats;
     for (const auto& f : io::scene_formats()) formats += (formats.empty() ? "" : ", ") + f;

@@ -142,7 +142,7 @@ void register_finetune(CLI::App& app, Action& action) {
         ->check(count_in(1));
     command->add_flag("--resume", args->resume, "continue from the checkpoint");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
-    command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .splat or .spz)")->required();
+    command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite an existing output");
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_finetune(*args); }; });

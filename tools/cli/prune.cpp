@@ -58,8 +58,8 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
     const double kept = result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0;
     std::printf("Gaussians: %zu -> %zu (%.1f%% kept", result.count_before, result.count_after, kept);
     if (result.lossless_applied) std::printf("; the lossless pass dropped %zu", result.lossless_dropped);
-    std::printf(")\nsize: %zu -> %zu bytes (%.2f -> %.2f MB)\nSH degree: %d -> %d\n", result.bytes_before,
-                result.bytes_after, double(result.bytes_before) / 1e6, double(result.bytes_after) / 1e6,
+    std::printf(")\nsize: %zu bytes as PLY -> %zu bytes written (%.2f -> %.2f MB)\nSH degree: %d -> %d\n",
+                result.bytes_before, result.bytes_after, double(result.bytes_before) / 1e6, double(result.bytes_after) / 1e6,
                 result.sh_degree_before, result.sh_degree_after);
     if (result.budget && !result.budget->met)
         std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",
@@ -205,7 +205,7 @@ void register_prune(CLI::App& app, Action& action) {
                             ->check(CLI::IsMember({"final", "decay"}));
     rounds->needs(recover);
     position_lr->needs(recover);
-    command->add_option("-o,--out", args->out, "pruned scene (.ply)")->required();
+    command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_prune(*args); }; });

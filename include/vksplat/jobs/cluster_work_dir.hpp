@@ -45,13 +45,14 @@ cluster::ClusterScores score_stage(const GaussianCloud& cloud, const std::vector
 
 struct ClusterPruneResult {
     size_t count_before = 0, count_after = 0;
-    size_t bytes_before = 0, bytes_after = 0;  // GaussianCloud::ply_bytes
+    size_t bytes_before = 0;      // the input as an INRIA PLY (GaussianCloud::ply_bytes)
+    size_t bytes_after = 0;       // the file written
     size_t clusters = 0, clusters_dropped = 0;
     double contribution_dropped = 0;       // share of the scene's total contribution
     bool stopped_by_contribution = false;  // the contribution limit ended the drop before the ratio
     std::optional<prune::BudgetResult> budget;  // prune_stage_to_budget's probes and what it chose
 };
-// Stage 7: writes the pruned scene to `out`.
+// Stage 7: writes the pruned scene to `out`, in the format its name says (io::write_scene).
 ClusterPruneResult prune_stage(const GaussianCloud& cloud, const ClusterOptions& options,
                                const std::filesystem::path& out, const ClusterStageIo& io);
 // Stage 7 under a quality budget instead of options.selection: the fewest Gaussians, clusters taken

@@ -54,7 +54,7 @@ struct PruneOptions {
     // Re-fit what is kept to the photos (needs images_dir); see jobs/prune_recover.hpp. With a
     // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting.
     std::optional<RecoverOptions> recover;
-    std::filesystem::path out;        // the pruned scene (.ply)
+    std::filesystem::path out;        // the pruned scene, in the format its name says (io::write_scene)
     io::WriteMode mode = io::WriteMode::refuse_existing;
     // The files the scene and cameras were read from: no output may be one of them, whatever mode.
     std::vector<std::filesystem::path> inputs;
@@ -65,7 +65,8 @@ struct PruneResult {
     size_t count_before = 0, count_after = 0;
     size_t lossless_dropped = 0;      // by the lossless pass, included in what was dropped
     bool lossless_applied = false;    // false when scores were loaded without pixel counts
-    size_t bytes_before = 0, bytes_after = 0;  // GaussianCloud::ply_bytes
+    size_t bytes_before = 0;          // the input as an INRIA PLY (GaussianCloud::ply_bytes)
+    size_t bytes_after = 0;           // the file written
     int sh_degree_before = 0, sh_degree_after = 0;
     std::vector<size_t> train_views, test_views;
     double scoring_seconds = 0;       // rendering the training views with statistics (0 if loaded)
