@@ -356,10 +356,14 @@ TEST(FormatsSpz, EmptyCloudRoundTrips) {
     ScratchDir dir;
     GaussianCloud empty;
     empty.sh_degree = 2;
-    write_spz(empty, dir / "empty.spz");
-    const GaussianCloud back = read_spz(dir / "empty.spz");
-    EXPECT_TRUE(back.empty());
-    EXPECT_EQ(back.sh_degree, 2);
+    for (int version : {3, 4}) {
+        const auto path = dir / ("empty" + std::to_string(version) + ".spz");
+        write_spz(empty, path, WriteMode::refuse_existing, version);
+        const GaussianCloud back = read_spz(path);
+        EXPECT_TRUE(back.empty());
+        EXPECT_EQ(back.sh_degree, 2);
+    }
+    EXPECT_EQ(read_bytes(dir / "empty4.spz").size(), 32u);  // the header alone: no streams
 }
 
 // One valid version 3 file of `count` splats of degree 1, uncompressed.
