@@ -29,10 +29,11 @@ namespace vksplat::io {
 
 // What turns the photos of a data set's cameras with lens distortion into the photos of the
 // pinhole cameras the data set gives them (as COLMAP's image_undistorter does before the reference
-// trains): a remap per COLMAP camera, made once at load and applied to each photo as it is read.
+// trains): per COLMAP camera, its lens and the pinhole chosen at load; each photo is remapped from
+// the one to the other as it is read.
 class PhotoUndistortion {
 public:
-    struct Lens;  // one COLMAP camera's photo size and remap (src/io/undistort.hpp)
+    struct Lens;  // one COLMAP camera's photo size, lens and pinhole (src/io/undistort.hpp)
 
     PhotoUndistortion() = default;
     explicit PhotoUndistortion(std::map<std::string, std::shared_ptr<const Lens>> by_camera_name)
