@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
     app.add_option("--min-gradient", recipe.budget.min_gradient);
     app.add_option("--prune-ratio", recipe.budget.prune_ratio);
     app.add_option("--start-fraction", recipe.start_fraction);
+    app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);

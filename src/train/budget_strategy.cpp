@@ -10,17 +10,18 @@ namespace vksplat::train {
 
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration) {
     if (budget.budget <= budget.start) return budget.budget;
+    const size_t peak = size_t(std::llround(double(budget.budget) * std::max(1.0, budget.peak)));
     const double from = double(reference.densify_from);
     const double span = budget.reach * (double(reference.densify_until) - from);
     const double p = span > 0 ? std::clamp((double(iteration) - from) / span, 0.0, 1.0) : 1.0;
     const double grown = 1.0 - std::pow(1.0 - p, budget.growth_exponent);
-    return budget.start + size_t(std::llround(double(budget.budget - budget.start) * grown));
+    return budget.start + size_t(std::llround(double(peak - budget.start) * grown));
 }
 
-std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, double ratio) {
+std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, size_t count) {
     const size_t n = importance.size();
     // The last Gaussian stays: an empty scene cannot train on.
-    const size_t drop = std::min(n > 0 ? n - 1 : 0, size_t(std::llround(std::clamp(ratio, 0.0, 1.0) * double(n))));
+    const size_t drop = n - std::clamp<size_t>(count, std::min<size_t>(n, 1), n);
     std::vector<uint32_t> order(n);
     std::iota(order.begin(), order.end(), 0u);
     // NaN ranks lowest: a score that is not a number is no reason to keep a Gaussian.
@@ -40,8 +41,20 @@ BudgetStrategy::BudgetStrategy(const ReferenceSchedule& reference, const BudgetS
         throw std::invalid_argument("BudgetStrategy: growth exponent must be > 0 and reach in (0, 1]");
     if (!(budget_.prune_ratio >= 0 && budget_.prune_ratio < 1))
         throw std::invalid_argument("BudgetStrategy: prune ratio must lie in [0, 1)");
-    if (budget_.prune_ratio > 0 && !importance_)
+    if (!(budget_.peak >= 1))
+        throw std::invalid_argument("BudgetStrategy: the peak must be at least the budget");
+    if ((budget_.prune_ratio > 0 || budget_.peak > 1) && !importance_)
         throw std::invalid_argument("BudgetStrategy: pruning needs an importance function");
+}
+
+void BudgetStrategy::prune_to(Trainer& trainer, size_t count) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::vector<float> importance = importance_(trainer.cloud());
+    events_.importance_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (importance.size() != trainer.size())
+        throw std::logic_error("BudgetStrategy: the importance function scored another scene");
+    events_.pruned += trainer.remove(keep_most_important(importance, count));
+    ++events_.prune_events;
 }
 
 void BudgetStrategy::before_step(Trainer& trainer, uint64_t iteration) {
@@ -53,15 +66,8 @@ void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
     // Scored before this step densifies, on Gaussians that have trained since the last reset
     // (right after one, every opacity is 0.01 and blend weights say little); Trainer::remove keeps
     // the densification sums, so the densification below still sees all of them.
-    if (step.densify && step.reset_opacity && budget_.prune_ratio > 0) {
-        const auto start = std::chrono::steady_clock::now();
-        const std::vector<float> importance = importance_(trainer.cloud());
-        events_.importance_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        if (importance.size() != trainer.size())
-            throw std::logic_error("BudgetStrategy: the importance function scored another scene");
-        events_.pruned += trainer.remove(keep_most_important(importance, budget_.prune_ratio));
-        ++events_.prune_events;
-    }
+    if (step.densify && step.reset_opacity && budget_.prune_ratio > 0)
+        prune_to(trainer, size_t(std::llround(double(trainer.size()) * (1.0 - budget_.prune_ratio))));
     if (step.densify) {
         DensifyRules rules = reference_.densify;
         rules.prune_large = step.prune_large;
@@ -71,6 +77,7 @@ void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
         trainer.densify(rules);
     }
     if (step.reset_opacity) trainer.reset_opacity(reference_.opacity_reset_value);
+    if (iteration == budget_.settle_at && trainer.size() > budget_.budget) prune_to(trainer, budget_.budget);
 }
 
 }  // namespace vksplat::train

@@ -38,22 +38,29 @@ struct BudgetSchedule {
     double min_gradient = 0.0002;
     // Fraction of the Gaussians removed at each in-window opacity reset (0: none).
     double prune_ratio = 0.0;
+    // Growth aims at peak x budget; after the step `settle_at` the Gaussians beyond the budget,
+    // the least important, are removed and the rest train on. A selection from a larger trained
+    // scene keeps more than one grown to the budget (pruning bonsai's 400,000 to 80,000 and
+    // re-fitting beats training 80,000: issue 29); the price is the larger scene's memory and
+    // time until then.
+    double peak = 1.0;
+    uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
 };
 
 // The Gaussians the scene may hold after densifying at `iteration`: start before the window,
-// the budget after it and once reached (budget below start: the budget throughout).
+// peak x budget once reached (budget below start: the budget throughout).
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration);
 
 // Per Gaussian of a scene, how much it is worth keeping (higher: more).
 using Importance = std::function<std::vector<float>(const GaussianCloud&)>;
 
-// The Gaussians to keep when `ratio` of them, those of the lowest importance, are removed (ties
-// broken by index, so the choice is the same on every platform; NaN ranks lowest; one is always kept).
-std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, double ratio);
+// The `count` Gaussians of the highest importance (ties broken by index, so the choice is the same
+// on every platform; NaN ranks lowest; at least one is kept).
+std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, size_t count);
 
 // What BudgetStrategy did, for the log and metrics.
 struct BudgetEvents {
-    size_t pruned = 0;          // removed by importance, in all
+    size_t pruned = 0;          // removed by importance, in all (the settling included)
     uint64_t prune_events = 0;
     double importance_seconds = 0;  // spent scoring
 };
@@ -67,6 +74,8 @@ public:
     const BudgetEvents& events() const { return events_; }
 
 private:
+    void prune_to(Trainer& trainer, size_t count);
+
     ReferenceSchedule reference_;
     BudgetSchedule budget_;
     Importance importance_;
