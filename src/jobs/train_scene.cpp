@@ -13,6 +13,7 @@
 #include "jobs/fingerprint.hpp"
 #include "vksplat/io/output_folders.hpp"
 #include "jobs/run_checkpoint.hpp"
+#include "jobs/training_report.hpp"
 #include "jobs/training_setup.hpp"
 #include "vksplat/camera/camera_focus.hpp"
 #include "vksplat/error.hpp"
@@ -113,7 +114,7 @@ std::string budget_text(const TrainRecipe& r) {
     const auto& b = r.budget;
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
-           std::to_string(b.prune_ratio) + ", start " + std::to_string(r.start_fraction);
+           std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + ", start " + std::to_string(r.start_fraction);
 }
 
 // What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the
@@ -204,13 +205,15 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     result.ply = fs::absolute(options.out_dir / "point_cloud.ply");
     result.cameras_json = fs::absolute(options.out_dir / "cameras.json");
     result.metrics_json = fs::absolute(options.out_dir / "metrics.json");
+    result.report = fs::absolute(options.out_dir / "report.html");
     const fs::path checkpoint = options.out_dir / "checkpoint";
     const auto notice = [&](const std::string& line) {
         if (options.notice) options.notice(line);
     };
     // Every output checked before anything slow: none may be an input (-o DATA would replace its
     // cameras.json), none is replaced unless asked for or resuming, the folder must take files.
-    const std::vector<fs::path> outputs = {result.ply, result.cameras_json, result.metrics_json};
+    std::vector<fs::path> outputs = {result.ply, result.cameras_json, result.metrics_json};
+    for (const auto& path : training_report_files(options.out_dir)) outputs.push_back(fs::absolute(path));
     for (const auto& path : outputs) io::refuse_input_as_output(path, data.inputs);
     io::OutputFolders folders;  // removed again if the run is refused before it writes
     folders.create(options.out_dir);
@@ -240,6 +243,9 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                                             "fewer than the " + std::to_string(data.initial.size()) +
                                             " training starts from; raise it or lower --resolution-scale");
     train::ReferenceSchedule schedule = recipe;
+    if (recipe.densify.max_gaussians > room)
+        notice("--max-gaussians " + std::to_string(recipe.densify.max_gaussians) + ": the memory budget holds about " +
+               std::to_string(room) + " Gaussians at this resolution; training to " + std::to_string(room));
     schedule.densify.max_gaussians = schedule.densify.max_gaussians > 0 ? std::min(schedule.densify.max_gaussians, room) : room;
     schedule.white_background = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
     result.strategy = std::string(to_string(chosen_strategy(recipe)));
@@ -260,6 +266,9 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                    " of the " + std::to_string(data.initial.size()) + " starting points, so that growth has room");
         }
         budget.start = start.size();
+        budget.settle_at = std::min(recipe.densify_until, recipe.iterations);
+        // The peak fits in memory too.
+        budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
         budget_strategy = static_cast<train::BudgetStrategy*>(strategy.get());
     }
@@ -331,6 +340,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"evaluate_seconds", result.evaluate_seconds},
                            {"history", history_json(result.history)}};
     write_json(result.metrics_json, metrics, mode);
+    write_training_report(options.out_dir, result, data.folder.string(), mode);
     return result;
 }
 

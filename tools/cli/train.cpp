@@ -19,6 +19,8 @@ struct TrainArgs {
     uint64_t densify_until = jobs::TrainRecipe{}.densify_until;
     double grad_threshold = train::DensifyRules{}.grad_threshold;
     size_t max_gaussians = 0;
+    std::string strategy = "automatic";
+    uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
     bool white_background = false, resume = false, force = false, quiet = false;
 };
@@ -28,6 +30,8 @@ int run_train(const TrainArgs& args) {
     options.recipe.iterations = args.iterations;
     options.recipe.test_every = args.test_every;
     options.recipe.densify.max_gaussians = args.max_gaussians;
+    options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
+    options.evaluate_every = args.evaluate_every;
     options.recipe.densify_until = args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
     options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
@@ -51,7 +55,7 @@ int run_train(const TrainArgs& args) {
     const auto measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {
         return eval::measure_quality(renderer, scene, views, settings, true);
     };
-    std::fprintf(stderr, "training from %s (%s: %zu training, %zu test views, %zu starting Gaussians) on %s\n",
+    std::fprintf(stderr, "training from %s (%s: %zu training, %zu test views, %zu starting points) on %s\n",
                  args.data.c_str(), data.format.c_str(), data.train_views.size(), data.test_views.size(),
                  data.initial.size(), context.info().name.c_str());
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
@@ -75,13 +79,18 @@ int run_train(const TrainArgs& args) {
                 "peak device memory %.1f MB\n",
                 static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                 result.seconds, result.gpu_ms_per_iteration, result.gaussians, double(result.peak_device_bytes) / 1e6);
+    if (result.budget_events.prune_events > 0)
+        std::printf("%s recipe: %zu Gaussians removed by blend weight in %llu prunes (%.1f s scoring)\n",
+                    result.strategy.c_str(), result.budget_events.pruned,
+                    static_cast<unsigned long long>(result.budget_events.prune_events),
+                    result.budget_events.importance_seconds);
     if (result.test.psnr.empty())
         std::printf("test views: none held out, so no test PSNR or SSIM\n");
     else
         std::printf("test views (%zu): PSNR %.3f dB, SSIM %.4f\n", result.test.psnr.size(), result.test.mean_psnr,
                     result.test.mean_ssim);
-    std::printf("wrote %s, %s, %s\n", result.ply.string().c_str(), result.cameras_json.string().c_str(),
-                result.metrics_json.string().c_str());
+    std::printf("wrote %s, %s, %s, %s\n", result.ply.string().c_str(), result.cameras_json.string().c_str(),
+                result.metrics_json.string().c_str(), result.report.string().c_str());
     return 0;
 }
 
@@ -92,14 +101,25 @@ void register_train(CLI::App& app, Action& action) {
     command->footer(
         "DATA: a COLMAP folder (sparse/0 with points3D.bin/.txt/.ply, images/), a NeRF-synthetic folder\n"
         "(transforms_train.json, transforms_test.json) or an INRIA cameras.json beside images/.\n"
-        "Writes OUT_DIR/point_cloud.ply, cameras.json (with each camera's split), metrics.json, checkpoint.\n"
+        "Writes OUT_DIR/point_cloud.ply, cameras.json (with each camera's split), metrics.json (with the count over\n"
+        "the run), report.html (its charts), checkpoint.\n"
         "Example:\n  vksplat train bonsai --max-gaussians 400000 -o bonsai_trained");
     auto args = std::make_shared<TrainArgs>();
     command->add_option("data", args->data, "the data folder")->required()->check(CLI::ExistingDirectory);
     command->add_option("-o,--out", args->out, "output folder")->required();
     command->add_option("--iters", args->iterations, "iterations (default 30000)")->check(count_in(1));
     command->add_option("--max-gaussians", args->max_gaussians,
-                        "cap densification here, keeping the largest-gradient candidates")
+                        "train to at most this many Gaussians; with --strategy automatic the budget recipe, "
+                        "which grows to reach it at --densify-until (a random subset of the starting points "
+                        "when they would fill more than half of it)")
+        ->check(count_in(1));
+    command->add_option("--strategy", args->strategy,
+                        "how Gaussians grow: budget (needs --max-gaussians), reference (the 3DGS recipe; "
+                        "--max-gaussians then only caps it) or automatic (budget when --max-gaussians is given)")
+        ->capture_default_str()
+        ->check(CLI::IsMember({"automatic", "reference", "budget"}));
+    command->add_option("--evaluate-every", args->evaluate_every,
+                        "measure the test views every N iterations into metrics.json's history (0: at the end only)")
         ->check(count_in(0));
     command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
         ->check(number_in(0.01, 1.0));

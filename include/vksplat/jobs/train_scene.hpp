@@ -114,7 +114,7 @@ struct TrainResult : train::LoopResult {
     double evaluate_seconds = 0;       // measuring history's test PSNR
     eval::Quality test;                // on the test views against the photos
     double scene_extent = 0;
-    std::filesystem::path ply, cameras_json, metrics_json;
+    std::filesystem::path ply, cameras_json, metrics_json, report;  // report.html and its charts beside it
 };
 
 // A scene's quality on the test views (eval::measure_quality, say).
