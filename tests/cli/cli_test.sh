@@ -328,6 +328,20 @@ expect train 0 "test views (3): PSNR" -- "$vksplat" train "$work/train_data" -o 
 [ -f "$work/trained/point_cloud.ply" ] && [ -f "$work/trained/metrics.json" ] && [ -f "$work/trained/cameras.json" ] &&
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: train outputs missing"; }
 expect train-refuses-overwrite 2 "already exists" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20
+# Training to a budget: 0 is no budget, the budget recipe needs one, a budget below the starting
+# points starts from a subset of them (said), one beyond memory is lowered (said).
+expect train-budget-zero any-failure "--max-gaussians: '0' is not a whole number >= 1" -- "$vksplat" train "$work/train_data" \
+  -o "$work/trained_zero" --iters 5 --max-gaussians 0
+expect train-budget-needs-count 2 "--strategy budget: needs --max-gaussians" -- "$vksplat" train "$work/train_data" \
+  -o "$work/trained_nobudget" --iters 5 --strategy budget
+[ ! -e "$work/trained_nobudget" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: a refused budget run left its output folder"; }
+expect train-budget-subsamples 0 "budget 1000: starting from a random 500 of the 100000 starting points" -- \
+  "$vksplat" train "$work/train_data" -o "$work/trained_budget" --iters 20 --max-gaussians 1000 --white-background --quiet
+grep -q '"strategy": "budget"' "$work/trained_budget/metrics.json" && [ -f "$work/trained_budget/report.html" ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: budget run's metrics.json or report.html"; }
+expect train-budget-beyond-memory 0 "--max-gaussians 100000000: the memory budget holds about" -- "$vksplat" train \
+  "$work/train_data" -o "$work/trained_huge" --iters 2 --max-gaussians 100000000 --memory-budget 400 --quiet
 expect train-into-its-data 2 "cameras.json: is an input of this command" -- "$vksplat" train "$work/train_data" \
   -o "$work/train_data" --iters 20 --force
 same_file_or_fail train-into-its-data "$work/train_data/cameras.json" "$work/three.json"

@@ -22,6 +22,7 @@ train::BudgetSchedule budget_of(size_t start, size_t budget, double exponent, do
     b.budget = budget;
     b.growth_exponent = exponent;
     b.reach = reach;
+    b.peak = 1.0;
     return b;
 }
 
@@ -45,6 +46,11 @@ TEST(GrowthTarget, RisesFromTheStartToTheBudgetOverTheWindow) {
         EXPECT_LE(t, 11000u);
     }
     EXPECT_EQ(train::growth_target(reference, budget_of(5000, 3000, 2.0), 100), 3000u);
+    // A peak of 2 grows to twice the budget.
+    auto twice = budget_of(1000, 11000, 1.0);
+    twice.peak = 2.0;
+    EXPECT_EQ(train::growth_target(reference, twice, 7750), 11500u);
+    EXPECT_EQ(train::growth_target(reference, twice, 15000), 22000u);
 }
 
 TEST(KeepMostImportant, DropsTheLowestWithTiesByIndexAndNaNFirst) {

@@ -181,6 +181,31 @@ TEST_F(TrainScene, DensificationGrowsFromSfmPointsAndBeatsNone) {
     EXPECT_GT(grown.test.mean_psnr, fixed.test.mean_psnr + 1.5);
 }
 
+// Half the Gaussians the reference grows here: the budget recipe (scheduled growth past the budget,
+// settled to it by blend weight after densification) loses less on the held-out views than the
+// reference recipe capped there, whose growth stops once the first candidates fill the cap.
+TEST_F(TrainScene, ABudgetLosesLessThanTheCapAtHalfTheCount) {
+    make_data("train_scene_budget");
+    const jobs::TrainingData data = jobs::load_training_data(dir / "data", recipe(800, 600), 1.0, 0);
+    const jobs::TrainResult free = train(data, recipe(800, 600), "free");
+    jobs::TrainRecipe half = recipe(800, 600);
+    half.densify.max_gaussians = free.gaussians / 2;
+    half.strategy = jobs::DensifyStrategy::reference;
+    const jobs::TrainResult capped = train(data, half, "capped");
+    half.strategy = jobs::DensifyStrategy::automatic;
+    const jobs::TrainResult budget = train(data, half, "budget");
+    EXPECT_EQ(budget.strategy, "budget");
+    EXPECT_LE(budget.gaussians, half.densify.max_gaussians);
+    EXPECT_LE(capped.gaussians, half.densify.max_gaussians);
+    EXPECT_GT(budget.test.mean_psnr, capped.test.mean_psnr + 0.3);
+    // metrics.json has the count over the run, report.html its chart.
+    EXPECT_TRUE(fs::exists(dir / "budget" / "report.html"));
+    EXPECT_TRUE(fs::exists(dir / "budget" / "training_gaussians.svg"));
+    ASSERT_FALSE(budget.history.empty());
+    EXPECT_EQ(budget.history.back().iteration, 800u);
+    EXPECT_EQ(budget.history.back().gaussians, budget.gaussians);
+}
+
 TEST_F(TrainScene, TheMemoryBudgetCapsGrowthAndRefusesAStartThatCannotFit) {
     make_data("train_scene_budget");
     const jobs::TrainRecipe r = recipe(300, 250);

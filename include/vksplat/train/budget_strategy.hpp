@@ -40,10 +40,11 @@ struct BudgetSchedule {
     double prune_ratio = 0.0;
     // Growth aims at peak x budget; after the step `settle_at` the Gaussians beyond the budget,
     // the least important, are removed and the rest train on. A selection from a larger trained
-    // scene keeps more than one grown to the budget (pruning bonsai's 400,000 to 80,000 and
-    // re-fitting beats training 80,000: issue 29); the price is the larger scene's memory and
-    // time until then.
-    double peak = 1.0;
+    // scene keeps more than one grown to the budget: on bonsai (H100, means of 3 runs) peak 2
+    // gives 29.35 dB at 80,000 and 27.80 at 40,000 where peak 1 gave 28.53 and 26.60 (one run
+    // each) and the cap 28.21 and 21.40; peaks 3 to 10 were no better (benchmarks/RESULTS.md).
+    // The price: the peak's memory and time until settle_at.
+    double peak = 2.0;
     uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
 };
 
