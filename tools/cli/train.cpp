@@ -20,6 +20,7 @@ struct TrainArgs {
     double grad_threshold = train::DensifyRules{}.grad_threshold;
     size_t max_gaussians = 0;
     std::string strategy = "automatic";
+    double budget_peak = train::BudgetSchedule{}.peak;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
     bool white_background = false, resume = false, force = false, quiet = false;
@@ -31,6 +32,7 @@ int run_train(const TrainArgs& args) {
     options.recipe.test_every = args.test_every;
     options.recipe.densify.max_gaussians = args.max_gaussians;
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
+    options.recipe.budget.peak = args.budget_peak;
     options.evaluate_every = args.evaluate_every;
     options.recipe.densify_until = args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
@@ -118,6 +120,11 @@ void register_train(CLI::App& app, Action& action) {
                         "--max-gaussians then only caps it) or automatic (budget when --max-gaussians is given)")
         ->capture_default_str()
         ->check(CLI::IsMember({"automatic", "reference", "budget"}));
+    command->add_option("--budget-peak", args->budget_peak,
+                        "budget recipe: grow to this multiple of --max-gaussians, then keep the budget's most "
+                        "important (1: grow to the budget only, better where a scene over-fits)")
+        ->capture_default_str()
+        ->check(number_in(1.0, 100.0));
     command->add_option("--evaluate-every", args->evaluate_every,
                         "measure the test views every N iterations into metrics.json's history (0: at the end only)")
         ->check(count_in(0));
