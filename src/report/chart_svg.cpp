@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <system_error>
@@ -94,6 +95,20 @@ bool drawable(double x, double y, bool log_x) {
     return std::isfinite(x) && std::isfinite(y) && (!log_x || x > 0.0);
 }
 
+// Point i of s has a spread bar to draw (Series::x_low, x_high).
+bool has_spread(const Series& s, size_t i, bool log_x) {
+    if (s.x_low.empty()) return false;
+    const double lo = s.x_low[i], hi = s.x_high[i];
+    return std::isfinite(lo) && std::isfinite(hi) && lo <= s.x[i] && s.x[i] <= hi && (!log_x || lo > 0.0);
+}
+
+// Where a point lies against a fixed y range (ChartSpec::y_min, y_max).
+enum class Scale { inside, below, above };
+
+// What the legend says of off-scale markers.
+constexpr const char* kOffScaleNote = "off scale (value shown)";
+constexpr const char* kOffScaleColour = "#555555";
+
 struct Extent {
     double lo = std::numeric_limits<double>::infinity();
     double hi = -std::numeric_limits<double>::infinity();
@@ -175,6 +190,13 @@ public:
                 break;
             }
         }
+    }
+    // A triangle pointing off the plot: down for a value below the axis, up for one above.
+    void off_scale_marker(double x, double y, bool below, const char* colour, const char* css_class) {
+        const double s = kMarkerRadius * 1.5, tip = below ? s : -s;
+        out_ += std::string("<path class=\"") + css_class + "\" fill=\"" + colour + "\" d=\"M" + num(x - s) + " " +
+                num(y - 0.6 * tip) + "L" + num(x + s) + " " + num(y - 0.6 * tip) + "L" + num(x) + " " + num(y + tip) +
+                "Z\"/>\n";
     }
     std::string take() { return std::move(out_); }
 
@@ -328,6 +350,13 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
             throw std::invalid_argument("render_svg_chart: series '" + s.name + "' has " +
                                         std::to_string(s.x.size()) + " x values but " +
                                         std::to_string(s.y.size()) + " y values");
+    for (const Series& s : spec.series)
+        if ((!s.x_low.empty() && s.x_low.size() != s.x.size()) || (!s.x_high.empty() && s.x_high.size() != s.x.size()) ||
+            s.x_low.empty() != s.x_high.empty())
+            throw std::invalid_argument("render_svg_chart: series '" + s.name + "' has " +
+                                        std::to_string(s.x_low.size()) + " x_low and " +
+                                        std::to_string(s.x_high.size()) + " x_high values for " +
+                                        std::to_string(s.x.size()) + " points");
     const bool categories = !spec.x_tick_labels.empty();
     const bool log_x = spec.log_x && !categories;
 
@@ -340,6 +369,10 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
                 ex.add(s.x[i]);
                 ey.add(s.y[i]);
                 ++drawable_points;
+                if (has_spread(s, i, log_x)) {
+                    ex.add(s.x_low[i]);
+                    ex.add(s.x_high[i]);
+                }
             }
     for (const auto& [y, label] : spec.reference_lines)
         if (std::isfinite(y)) ey.add(y);
@@ -359,7 +392,18 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
     const Axis y_axis = ey.empty() ? make_linear_axis(0.0, 1.0, spec.y_min, spec.y_max)
                                    : make_linear_axis(ey.lo, ey.hi, spec.y_min, spec.y_max);
 
-    // Legend entries: named series only.
+    // Points beyond a fixed y range; the legend explains their markers.
+    const double y_eps = (y_axis.hi - y_axis.lo) * 1e-9;
+    const auto scale_of = [&](double y) {
+        return y < y_axis.lo - y_eps ? Scale::below : y > y_axis.hi + y_eps ? Scale::above : Scale::inside;
+    };
+    bool any_off_scale = false;
+    for (const Series& s : spec.series)
+        for (size_t i = 0; i < s.x.size(); ++i)
+            any_off_scale |= drawable(s.x[i], s.y[i], log_x) && scale_of(s.y[i]) != Scale::inside;
+
+    // Legend entries: named series only, then the off-scale note (kNote) where there are such points.
+    constexpr size_t kNote = std::numeric_limits<size_t>::max();
     std::vector<size_t> legend_entries;
     double legend_text_width = 0.0;
     for (size_t i = 0; i < spec.series.size(); ++i)
@@ -367,6 +411,10 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
             legend_entries.push_back(i);
             legend_text_width = std::max(legend_text_width, text_width(spec.series[i].name, kLegendFont));
         }
+    if (any_off_scale) {
+        legend_entries.push_back(kNote);
+        legend_text_width = std::max(legend_text_width, text_width(kOffScaleNote, kLegendFont));
+    }
 
     // Layout.
     const double W = width, H = height;
@@ -451,7 +499,8 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
         svg.raw("</g>\n");
     }
 
-    // The series.
+    // The series. Off-scale markers stack per edge and x (rounded to 6 px) across the series.
+    std::map<std::pair<bool, long>, int> off_scale_stacks;
     for (size_t si = 0; si < spec.series.size(); ++si) {
         const Series& s = spec.series[si];
         const char* colour = kPalette[si % kPalette.size()];
@@ -479,9 +528,37 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
             else flush();
         }
         flush();
+        for (size_t i = 0; i < s.x.size(); ++i) {
+            if (!drawable(s.x[i], s.y[i], log_x) || !has_spread(s, i, log_x) || scale_of(s.y[i]) != Scale::inside)
+                continue;
+            const double y = py(s.y[i]), x0 = px(s.x_low[i]), x1 = px(s.x_high[i]), cap = kMarkerRadius * 1.2;
+            svg.raw("<path class=\"spread\" fill=\"none\" stroke=\"" + std::string(colour) +
+                    "\" stroke-width=\"1.25\" d=\"M" + num(x0) + " " + num(y) + "H" + num(x1) + "M" + num(x0) + " " +
+                    num(y - cap) + "V" + num(y + cap) + "M" + num(x1) + " " + num(y - cap) + "V" + num(y + cap) +
+                    "\"/>\n");
+        }
         svg.raw("<g stroke=\"#ffffff\" stroke-width=\"1\">\n");
-        for (size_t i = 0; i < s.x.size(); ++i)
-            if (drawable(s.x[i], s.y[i], log_x)) svg.marker(shape, px(s.x[i]), py(s.y[i]), colour, "marker");
+        for (size_t i = 0; i < s.x.size(); ++i) {
+            if (!drawable(s.x[i], s.y[i], log_x)) continue;
+            const Scale where = scale_of(s.y[i]);
+            if (where == Scale::inside) {
+                svg.marker(shape, px(s.x[i]), py(s.y[i]), colour, "marker");
+                continue;
+            }
+            // At the edge, stacked inward past the markers already at (about) this x.
+            const double x = px(s.x[i]);
+            const bool below = where == Scale::below;
+            int& stacked = off_scale_stacks[{below, std::lround(x / 6.0)}];
+            const double step = kMarkerRadius * 3.6;
+            const double y = below ? py(y_axis.lo) - stacked * step : py(y_axis.hi) + stacked * step;
+            ++stacked;
+            svg.off_scale_marker(x, y, below, colour, "off-scale");
+            char value[32];
+            const auto r = std::to_chars(value, value + sizeof(value), s.y[i], std::chars_format::general, 3);
+            svg.text(x + kMarkerRadius * 2, y + kTickFont * 0.3, std::string(value, r.ptr), 10.0, "start",
+                     std::string("class=\"off-scale-value\" fill=\"") + colour +
+                         "\" stroke=\"#ffffff\" stroke-width=\"3\" paint-order=\"stroke\"");
+        }
         svg.raw("</g>\n</g>\n");
     }
 
@@ -498,6 +575,13 @@ std::string render_svg_chart(const ChartSpec& spec, int width, int height) {
             const auto col = static_cast<double>(e / legend_rows);
             const auto row = static_cast<double>(e % legend_rows);
             const double x = x0 + col * column_width, y = y0 + row * kLegendRow + kLegendRow / 2;
+            if (si == kNote) {
+                svg.off_scale_marker(x + kLegendSample / 2, y, true, kOffScaleColour, "legend-off-scale");
+                svg.text(x + kLegendSample + 6, y + kLegendFont * 0.35,
+                         fit_text(kOffScaleNote, kLegendFont, column_width - kLegendSample - 6.0 - 8.0), kLegendFont,
+                         "start", "fill=\"#222222\"");
+                continue;
+            }
             const char* colour = kPalette[si % kPalette.size()];
             svg.line(x, y, x + kLegendSample, y,
                      std::string("stroke=\"") + colour + "\" stroke-width=\"2\" stroke-linecap=\"round\"");

@@ -409,10 +409,79 @@ TEST(SvgChart, HonoursAFixedYRange) {
     ASSERT_TRUE(check_xml(svg).ok);
     EXPECT_TRUE(has_text(svg, "0.9"));
     EXPECT_TRUE(has_text(svg, "1"));
-    EXPECT_FALSE(has_text(svg, "1.2"));
+    EXPECT_EQ(count(svg, "class=\"marker\""), 2u) << "1.2 lies above the range: an off-scale marker";
     EXPECT_FALSE(has_text(svg, "below the range"));  // outside the fixed range: not drawn
     EXPECT_EQ(count(svg, "clip-path=\"url(#plot-area)\""), 1u);
     spec.y_max = 0.9;
+    EXPECT_THROW(render_svg_chart(spec), std::invalid_argument);
+}
+
+// The triangles' tips ("M... L... L x tip Z"): the y of each off-scale marker's tip, in order.
+std::vector<std::pair<double, double>> off_scale_tips(const std::string& svg) {
+    std::vector<std::pair<double, double>> out;
+    const std::regex re(R"re(<path class="off-scale"[^>]*d="M[-0-9.]+ ([-0-9.]+)L[-0-9.]+ [-0-9.]+L([-0-9.]+) ([-0-9.]+)Z")re");
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), re); it != std::sregex_iterator(); ++it)
+        out.emplace_back(std::stod((*it)[2]), std::stod((*it)[3]) - std::stod((*it)[1]));  // x, tip - base
+    return out;
+}
+
+// The zoomed PSNR-change chart of a sweep where every method loses more than its range shows: each
+// point is a triangle at the edge with its value, not an empty plot.
+TEST(SvgChart, MarksPointsBeyondAFixedRangeAtTheEdgeWithTheirValues) {
+    ChartSpec spec;
+    spec.series.push_back({"blend", {0.5, 0.8, 0.9}, {-2.5, -3.14, -4}});
+    spec.series.push_back({"random", {0.5, 0.8, 0.9}, {-2.25, -5.5, 0.75}});
+    spec.y_min = -2.0;
+    spec.y_max = 0.5;
+    const std::string svg = render_svg_chart(spec, 620, 400);
+    const XmlCheck xml = check_xml(svg);
+    ASSERT_TRUE(xml.ok) << xml.error;
+    EXPECT_EQ(count(svg, "class=\"marker\""), 0u);
+    EXPECT_EQ(count(svg, "class=\"off-scale\""), 6u);
+    for (const char* value : {"-2.5", "-3.14", "-4", "-2.25", "-5.5", "0.75"}) EXPECT_TRUE(has_text(svg, value)) << value;
+    EXPECT_TRUE(has_text(svg, "off scale (value shown)"));
+    EXPECT_EQ(count(svg, "class=\"legend-off-scale\""), 1u);
+    EXPECT_FALSE(has_text(svg, "no data"));
+
+    const auto tips = off_scale_tips(svg);
+    ASSERT_EQ(tips.size(), 6u);
+    // Below the range they point down, above it up; all sit inside the picture.
+    for (size_t i : {0, 1, 2, 3, 4}) EXPECT_GT(tips[i].second, 0) << i;
+    EXPECT_LT(tips[5].second, 0);
+    const std::regex tip_y(R"re(<path class="off-scale"[^>]*L[-0-9.]+ ([-0-9.]+)Z")re");
+    std::vector<double> ys;
+    for (auto it = std::sregex_iterator(svg.begin(), svg.end(), tip_y); it != std::sregex_iterator(); ++it)
+        ys.push_back(std::stod((*it)[1]));
+    ASSERT_EQ(ys.size(), 6u);
+    for (double y : ys) {
+        EXPECT_GT(y, 0);
+        EXPECT_LT(y, 400);
+    }
+    EXPECT_LT(ys[5], ys[0]) << "above the range: at the top edge";
+    // Two points below at one x are stacked, not drawn over each other.
+    EXPECT_EQ(tips[0].first, tips[3].first);
+    EXPECT_NE(ys[0], ys[3]);
+
+    // Without a fixed range nothing is off scale and the legend says nothing of it.
+    spec.y_min.reset();
+    spec.y_max.reset();
+    const std::string free = render_svg_chart(spec, 620, 400);
+    EXPECT_EQ(count(free, "class=\"off-scale\""), 0u);
+    EXPECT_FALSE(has_text(free, "off scale (value shown)"));
+}
+
+TEST(SvgChart, DrawsTheSpreadOfEachXAsABar) {
+    ChartSpec spec;
+    Series timed{"blend", {2, 4, 8}, {30, 29, 27}};
+    timed.x_low = {1.5, 3.9, kNaN};
+    timed.x_high = {2.5, 60, 9};
+    spec.series.push_back(timed);
+    spec.log_x = true;
+    const std::string svg = render_svg_chart(spec);
+    ASSERT_TRUE(check_xml(svg).ok);
+    EXPECT_EQ(count(svg, "class=\"spread\""), 2u) << "the NaN low end draws no bar";
+    EXPECT_TRUE(has_text(svg, "100")) << "the axis widens to the bar's high end, 60";
+    spec.series[0].x_high.pop_back();
     EXPECT_THROW(render_svg_chart(spec), std::invalid_argument);
 }
 

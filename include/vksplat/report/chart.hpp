@@ -19,6 +19,11 @@ namespace vksplat::report {
 struct Series {
     std::string name;  // shown in the legend; an empty name leaves the series out of the legend
     std::vector<double> x, y;
+    // The spread of each x, e.g. the fastest and slowest of repeated timings: empty, or as long as x
+    // (else render_svg_chart throws std::invalid_argument). Each drawable point with a finite
+    // x_low <= x <= x_high (positive on a log axis) gets a horizontal bar with end caps from x_low to
+    // x_high, of class "spread"; the x axis widens to hold the bars.
+    std::vector<double> x_low = {}, x_high = {};
 };
 
 struct ChartSpec {
@@ -26,7 +31,9 @@ struct ChartSpec {
     std::vector<Series> series;
     bool log_x = false;  // logarithmic x axis, ticked at decades (and 2, 5 within short ranges)
     // Fixed ends of the y axis; when absent, the axis spans the data and the reference lines,
-    // widened to the nearest ticks. Points outside a fixed range are clipped at the plot's edge.
+    // widened to the nearest ticks. A point outside a fixed range is drawn at the edge it lies
+    // beyond as a triangle pointing off the plot (class "off-scale", points at one x stacked inward)
+    // with its value beside it, and the legend says so; its lines run on to the edge and are cut.
     std::optional<double> y_min, y_max;
     // Horizontal dashed lines with a label, e.g. {31.2, "unpruned"}.
     std::vector<std::pair<double, std::string>> reference_lines;
