@@ -19,6 +19,9 @@ root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__)
 # errors, the reference constants (glslang compiles them too), and render_types.hpp, which both
 # renderers speak (the reference rasterizer uses its types, never RenderSettings::validate()).
 TOP_LEVEL = {'render_types': None, 'constants': None, 'error': None}
+# version.hpp (generated) is everyone's too. vksplat.h, the C API, sits beside them (what C
+# programs include) but is capi's.
+TOP_LEVEL.update({'version': None, 'vksplat.h': 'capi'})
 
 modules = {}  # module -> (target, links: set of targets)
 for cmake in sorted(root.glob('src/*/CMakeLists.txt')):
