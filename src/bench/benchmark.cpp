@@ -56,6 +56,7 @@ BenchmarkResult benchmark_views(Renderer& renderer, const std::vector<Camera>& c
         bench.height = camera.height;
         bench.median_ms = median(frames);
         bench.min_ms = *std::min_element(frames.begin(), frames.end());
+        bench.max_ms = *std::max_element(frames.begin(), frames.end());
         for (const auto& name : order)
             bench.stages.push_back({name, median(stages[name]),
                                     *std::min_element(stages[name].begin(), stages[name].end())});

@@ -31,6 +31,9 @@ figure img { display: block; max-width: 100%; height: auto; background: #fff;
 figcaption { font-size: 13px; color: #555a61; margin-top: 4px; }
 .row { display: flex; flex-wrap: wrap; gap: 16px; align-items: flex-start; }
 .row figure { margin: 0; }
+p.note { max-width: none; padding: 8px 14px; border-radius: 4px; }
+p.summary { font-weight: 600; font-size: 16px; background: #e8eef6; border-left: 4px solid #0072B2; }
+p.warning { background: #fff4cc; border-left: 4px solid #b38600; }
 )css";
 
 // Percent-encoding for a relative URL path: unreserved characters and '/' stay, all else is %XX.
@@ -79,6 +82,11 @@ HtmlReport::HtmlReport(std::string title) : title_(std::move(title)) {}
 void HtmlReport::add_heading(std::string text) { blocks_.push_back("<h2>" + xml_escape(text) + "</h2>"); }
 
 void HtmlReport::add_paragraph(std::string text) { blocks_.push_back("<p>" + xml_escape(text) + "</p>"); }
+
+void HtmlReport::add_note(std::string text, Note kind) {
+    blocks_.push_back(std::string("<p class=\"note ") + (kind == Note::summary ? "summary" : "warning") + "\">" +
+                      xml_escape(text) + "</p>");
+}
 
 void HtmlReport::add_table(std::vector<std::string> header, std::vector<std::vector<std::string>> rows) {
     for (size_t r = 0; r < rows.size(); ++r)

@@ -252,6 +252,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     const std::vector<double> fractions = options.fractions.empty() ? default_sweep_fractions() : options.fractions;
 
     SweepResult result;
+    result.device = renderer.context().info().name;
+    result.device_is_cpu = renderer.context().info().type == VK_PHYSICAL_DEVICE_TYPE_CPU;
     jobs::ViewSplit split = jobs::split_views(cameras, options.test_views, options.train_views);
     result.test_views = std::move(split.test);
     result.train_views = spread_views(split.train, options.max_train_views);

@@ -28,7 +28,7 @@ std::string field(const std::string& text) {
 void write_sweep_csv(const std::filesystem::path& path, const SweepResult& result, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) {
         out << "method,fraction,dropped,gaussians,bytes,megabytes,psnr,delta_psnr,ssim,psnr_vs_unpruned,"
-               "ssim_vs_unpruned,ms_per_frame,recover_iterations,recover_seconds\n";
+               "ssim_vs_unpruned,ms_per_frame,recover_iterations,recover_seconds,ms_min,ms_max\n";
         for (const SweepRow& row : result.rows) {
             const ModelMeasure& m = row.measure;
             out << row.method << ',' << fraction_label(row.fraction) << ',' << number(row.dropped, 6)
@@ -36,7 +36,8 @@ void write_sweep_csv(const std::filesystem::path& path, const SweepResult& resul
                 << number(m.psnr, 4) << ',' << number(row.delta_psnr, 4) << ',' << number(m.ssim, 5) << ','
                 << number(m.psnr_vs_unpruned, 4) << ',' << number(m.ssim_vs_unpruned, 5) << ','
                 << number(m.ms_per_frame, 3) << ',' << row.recover_iterations << ','
-                << number(row.recover_seconds, 2) << '\n';
+                << number(row.recover_seconds, 2) << ',' << number(m.ms_min, 3) << ',' << number(m.ms_max, 3)
+                << '\n';
         }
     });
 }

@@ -1,5 +1,6 @@
 // One model of the sweep measured: quality on the test views against the photos and against the
 // unpruned render, GPU time per frame, size.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numeric>
@@ -25,9 +26,18 @@ double mean(const std::vector<double>& values) {
     return values.empty() ? 0.0 : std::accumulate(values.begin(), values.end(), 0.0) / double(values.size());
 }
 
-double time_per_frame(Renderer& renderer, const Targets& targets, const SweepOptions& options,
-                      const std::vector<double>& measuring_ms) {
-    if (options.timing_repetitions == 0) return bench::median(measuring_ms);
+// ms_per_frame and its spread (ModelMeasure).
+struct FrameTime {
+    double median = 0, min = 0, max = 0;
+};
+
+FrameTime time_per_frame(Renderer& renderer, const Targets& targets, const SweepOptions& options,
+                         const std::vector<double>& measuring_ms) {
+    if (options.timing_repetitions == 0) {
+        if (measuring_ms.empty()) return {};
+        const auto [min, max] = std::minmax_element(measuring_ms.begin(), measuring_ms.end());
+        return {bench::median(measuring_ms), *min, *max};
+    }
     const size_t count = options.timing_views == 0 ? targets.cameras.size()
                                                    : std::min(options.timing_views, targets.cameras.size());
     std::vector<size_t> views(count);
@@ -36,7 +46,13 @@ double time_per_frame(Renderer& renderer, const Targets& targets, const SweepOpt
     timing.warmup = options.timing_warmup;
     timing.repetitions = options.timing_repetitions;
     timing.settings = options.settings;
-    return bench::benchmark_views(renderer, targets.cameras, views, timing, "").mean_of_medians_ms;
+    const bench::BenchmarkResult result = bench::benchmark_views(renderer, targets.cameras, views, timing, "");
+    FrameTime time{result.mean_of_medians_ms, 0, 0};
+    for (const bench::ViewBenchmark& view : result.views) {
+        time.min += view.min_ms / double(result.views.size());
+        time.max += view.max_ms / double(result.views.size());
+    }
+    return time;
 }
 
 }  // namespace
@@ -61,7 +77,10 @@ ModelMeasure measure_model(Renderer& renderer, const GaussianCloud& cloud, const
     m.ssim = mean(ssim);
     m.psnr_vs_unpruned = pooled_psnr(psnr_unpruned);
     m.ssim_vs_unpruned = mean(ssim_unpruned);
-    m.ms_per_frame = time_per_frame(renderer, targets, options, gpu_ms);
+    const FrameTime time = time_per_frame(renderer, targets, options, gpu_ms);
+    m.ms_per_frame = time.median;
+    m.ms_min = time.min;
+    m.ms_max = time.max;
     return m;
 }
 

@@ -17,12 +17,14 @@ std::string format(const char* pattern, double value) {
 std::string megabytes(size_t bytes) { return format("%.2f", double(bytes) / 1e6); }
 
 std::string timing_rule(const SweepResult& result, const SweepOptions& options) {
-    if (options.timing_repetitions == 0) return "the median over the test views of each one's measuring render";
+    if (options.timing_repetitions == 0)
+        return "the median over the test views of each one's measuring render; the spread is the fastest and the "
+               "slowest of those renders";
     const size_t views = options.timing_views == 0 ? result.test_views.size()
                                                    : std::min(options.timing_views, result.test_views.size());
     return "the median of " + std::to_string(options.timing_repetitions) + " frames per view after " +
            std::to_string(options.timing_warmup) + " untimed, averaged over the first " + std::to_string(views) +
-           " test views";
+           " test views; the spread is each view's fastest and slowest frame, averaged the same way";
 }
 
 void add_summary(report::HtmlReport& report, const SweepResult& result, const SweepOptions& options) {
@@ -57,22 +59,29 @@ void add_summary(report::HtmlReport& report, const SweepResult& result, const Sw
             format("%.1f", result.cluster_seconds) + " s.");
 }
 
+// A render identical to the unpruned one has PSNR +infinity against it: said in words (sweep.csv
+// keeps "inf" for programs).
+std::string psnr_vs_unpruned(double psnr) { return std::isinf(psnr) ? "identical" : format("%.2f", psnr); }
+
+std::string spread(const ModelMeasure& m) { return format("%.2f", m.ms_min) + " – " + format("%.2f", m.ms_max); }
+
 void add_table(report::HtmlReport& report, const SweepResult& result) {
     std::vector<std::vector<std::string>> rows;
     const ModelMeasure& u = result.unpruned;
     rows.push_back({"unpruned", "-", "0", std::to_string(u.gaussians), megabytes(u.bytes), format("%.3f", u.psnr),
-                    "0", format("%.4f", u.ssim), "inf", "1", format("%.2f", u.ms_per_frame), "-"});
+                    "0", format("%.4f", u.ssim), psnr_vs_unpruned(u.psnr_vs_unpruned), "1",
+                    format("%.2f", u.ms_per_frame), spread(u), "-"});
     for (const SweepRow& row : result.rows) {
         const ModelMeasure& m = row.measure;
         rows.push_back({row.method, fraction_label(row.fraction),
                         format("%.4f", row.dropped), std::to_string(m.gaussians), megabytes(m.bytes),
                         format("%.3f", m.psnr), format("%+.3f", row.delta_psnr), format("%.4f", m.ssim),
-                        format("%.2f", m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
-                        format("%.2f", m.ms_per_frame),
+                        psnr_vs_unpruned(m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
+                        format("%.2f", m.ms_per_frame), spread(m),
                         row.recover_iterations ? format("%.1f", row.recover_seconds) : std::string("-")});
     }
     report.add_table({"method", "fraction", "dropped", "Gaussians", "MB", "PSNR", "ΔPSNR", "SSIM",
-                      "PSNR vs unpruned", "SSIM vs unpruned", "ms/frame", "re-fit s"},
+                      "PSNR vs unpruned", "SSIM vs unpruned", "ms/frame", "ms fastest – slowest", "re-fit s"},
                      std::move(rows));
 }
 
@@ -121,6 +130,12 @@ void add_sheets(report::HtmlReport& report, const SweepResult& result, const Swe
 void write_sweep_report(const std::filesystem::path& path, const SweepResult& result, const SweepOptions& options,
                         const SweepCharts& charts, io::WriteMode mode) {
     report::HtmlReport report("Pruning sweep" + (options.scene_label.empty() ? "" : ": " + options.scene_label));
+    report.add_note(summary_line(result), report::HtmlReport::Note::summary);
+    if (result.device_is_cpu)
+        report.add_note("Timed on " + result.device +
+                            ", a CPU device: its frame times say little about any GPU's (a pruned model may even "
+                            "time slower than the unpruned one). Time on a GPU to compare speeds.",
+                        report::HtmlReport::Note::warning);
     add_summary(report, result, options);
     report.add_paragraph("Tables: sweep.csv (one row per method and fraction) and sh_degrees.csv. The view totals "
                          "are in totals.npy: vksplat prune --load-scores totals.npy cuts any method at any count "

@@ -104,6 +104,18 @@ TEST(HtmlReport, ReferencesImagesByRelativePath) {
     EXPECT_THROW(report.add_images_row({{"ok.png", "a"}, {"/abs.png", "b"}}), std::invalid_argument);
 }
 
+TEST(HtmlReport, SetsSummariesAndWarningsApartFromParagraphs) {
+    HtmlReport report("r");
+    report.add_note("best trade: 80% fewer <Gaussians>", HtmlReport::Note::summary);
+    report.add_note("timed on a CPU", HtmlReport::Note::warning);
+    report.add_paragraph("plain");
+    const std::string html = report.html();
+    EXPECT_NE(html.find("<p class=\"note summary\">best trade: 80% fewer &lt;Gaussians&gt;</p>"), std::string::npos);
+    EXPECT_NE(html.find("<p class=\"note warning\">timed on a CPU</p>"), std::string::npos);
+    EXPECT_NE(html.find("p.warning {"), std::string::npos) << "styled";
+    EXPECT_LT(html.find("note summary"), html.find("<p>plain</p>"));
+}
+
 TEST(HtmlReport, RightAlignsNumbersInTablesAndChecksRowWidths) {
     HtmlReport report("r");
     report.add_table({"method", "kept", "PSNR", "change"},

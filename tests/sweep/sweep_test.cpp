@@ -19,6 +19,7 @@
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
 #include "vksplat/error.hpp"
+#include "vksplat/report/chart.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/prune/score_files.hpp"
@@ -135,7 +136,8 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     ASSERT_EQ(csv.size(), 1 + result.rows.size());
     EXPECT_EQ(csv[0], (std::vector<std::string>{"method", "fraction", "dropped", "gaussians", "bytes", "megabytes",
                                                 "psnr", "delta_psnr", "ssim", "psnr_vs_unpruned", "ssim_vs_unpruned",
-                                                "ms_per_frame", "recover_iterations", "recover_seconds"}));
+                                                "ms_per_frame", "recover_iterations", "recover_seconds", "ms_min",
+                                                "ms_max"}));
     const size_t candidates = n - result.lossless_dropped;
     for (size_t m = 0; m < methods.size(); ++m)
         for (size_t f = 0; f < fractions.size(); ++f) {
@@ -143,7 +145,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
             const sweep::SweepRow& row = result.rows[i];
             const auto& cells = csv[1 + i];
             SCOPED_TRACE(methods[m] + " at " + std::to_string(fractions[f]));
-            ASSERT_EQ(cells.size(), 14u);
+            ASSERT_EQ(cells.size(), 16u);
             EXPECT_EQ(cells[12], "0") << "prune-only rows were not re-fitted";
             EXPECT_EQ(cells[0], methods[m]);
             EXPECT_EQ(std::stod(cells[1]), fractions[f]);
@@ -161,6 +163,11 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
             EXPECT_GT(row.measure.ssim, 0.0);
             EXPECT_LE(row.measure.ssim, 1.0);
             EXPECT_GT(row.measure.ms_per_frame, 0.0);
+            EXPECT_GT(row.measure.ms_min, 0.0);
+            EXPECT_LE(row.measure.ms_min, row.measure.ms_per_frame);
+            EXPECT_GE(row.measure.ms_max, row.measure.ms_per_frame);
+            EXPECT_NEAR(std::stod(cells[14]), row.measure.ms_min, 1e-3);
+            EXPECT_NEAR(std::stod(cells[15]), row.measure.ms_max, 1e-3);
             EXPECT_EQ(row.measure.view_psnr.size(), cameras.size());
             if (fractions[f] == 0) {
                 // The lossless pass alone: bit-identical on the views it was gathered over.
@@ -233,6 +240,45 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     EXPECT_NE(html.find("For the best method, " + best), std::string::npos);
     EXPECT_NE(html.find("sweep.csv"), std::string::npos);
     EXPECT_EQ(count(html, "<tr>"), 1 + 1 + result.rows.size() + 1 + 3) << "sweep table with unpruned, SH table";
+    // Identical renders are said in words, never "inf"; every row's timing spread is in the table.
+    EXPECT_EQ(html.find(">inf<"), std::string::npos);
+    EXPECT_EQ(count(html, "<td>identical</td>"), 1 + methods.size()) << "the unpruned row and each fraction 0";
+    EXPECT_EQ(count(html, "<th>ms fastest – slowest</th>"), 1u);
+    // The speed chart draws each timing's spread.
+    EXPECT_EQ(count(read_text(out / "charts" / "psnr_vs_ms.svg"), "class=\"spread\""), result.rows.size());
+    // The one-line summary opens the page; a CPU device is warned of.
+    EXPECT_EQ(result.device_is_cpu, renderer->context().info().type == VK_PHYSICAL_DEVICE_TYPE_CPU);
+    EXPECT_EQ(result.device, renderer->context().info().name);
+    const size_t summary = html.find("<p class=\"note summary\">" + report::xml_escape(sweep::summary_line(result)) + "</p>");
+    ASSERT_NE(summary, std::string::npos);
+    EXPECT_LT(summary, html.find("<p>Scene "));
+    EXPECT_EQ(html.find("class=\"note warning\">Timed on " + result.device) != std::string::npos, result.device_is_cpu);
+}
+
+// The one line at the top of the report: the row that drops most within 1 dB, its loss and speed.
+TEST(SweepHelpers, SummaryLineNamesTheBestTradeWithinOneDecibel) {
+    sweep::SweepResult result;
+    result.unpruned.ms_per_frame = 2.0;
+    auto row = [](std::string method, double dropped, double delta, double ms) {
+        sweep::SweepRow r;
+        r.method = std::move(method);
+        r.fraction = r.dropped = dropped;
+        r.delta_psnr = delta;
+        r.measure.ms_per_frame = ms;
+        return r;
+    };
+    result.rows = {row("blend", 0.5, -0.1, 1.5), row("blend", 0.8, -0.42, 0.95), row("blend", 0.9, -1.5, 0.5),
+                   row("blend+recover", 0.9, -0.9, 0.5), row("random", 0.8, -3, 1.0)};
+    EXPECT_EQ(sweep::summary_line(result),
+              "best trade: blend+recover, 90% fewer Gaussians at -0.90 dB, 4x faster (2.00 -> 0.50 ms per frame)");
+    result.rows[3].delta_psnr = -1.2;
+    result.device_is_cpu = true;
+    EXPECT_EQ(sweep::summary_line(result), "best trade: blend, 80% fewer Gaussians at -0.42 dB, 2.1x faster (2.00 -> "
+                                           "0.95 ms per frame, timed on a CPU)");
+    result.rows = {row("blend", 0.5, -1.5, 4.0), row("random", 0.5, -2.5, 1.0), row("blend", 0.9, -1.2, 1.0)};
+    EXPECT_EQ(sweep::summary_line(result), "no pruned model stays within 1 dB of the unpruned one; the least loss: "
+                                           "blend, 50% fewer Gaussians at -1.50 dB, 2x slower (2.00 -> 4.00 ms per "
+                                           "frame, timed on a CPU)");
 }
 
 TEST_F(Sweep, RecoverAddsARefittedRowBesideEachPrunedOne) {

@@ -84,6 +84,9 @@ int run_sweep(const SweepArgs& args) {
     gpu::Context context(args.gpu.context_options());
     Renderer renderer(context);
     std::fprintf(stderr, "sweeping %zu Gaussians on %s\n", cloud.size(), context.info().name.c_str());
+    if (context.info().type == VK_PHYSICAL_DEVICE_TYPE_CPU)
+        std::fprintf(stderr, "note: %s is a CPU device: its frame times say little about a GPU's\n",
+                     context.info().name.c_str());
     // One progress line per stage, started when the stage first reports.
     std::unique_ptr<ProgressLine> line;
     std::string stage;
@@ -104,8 +107,8 @@ int run_sweep(const SweepArgs& args) {
     if (result.plain_render_seconds > 0)
         std::printf(" (plain rendering: %.1f s, ratio %.2f)", result.plain_render_seconds,
                     result.scoring_seconds / result.plain_render_seconds);
-    std::printf("\nbest method: %s\nwrote %s\nwrote %s\n", result.best_method.c_str(),
-                result.csv.c_str(), result.report.c_str());
+    std::printf("\nbest method: %s\n%s\nwrote %s\nwrote %s\n", result.best_method.c_str(),
+                sweep::summary_line(result).c_str(), result.csv.c_str(), result.report.c_str());
     return 0;
 }
 

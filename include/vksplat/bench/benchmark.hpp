@@ -25,7 +25,7 @@ struct StageSummary {
 struct ViewBenchmark {
     size_t view = 0;
     int width = 0, height = 0;
-    double median_ms = 0, min_ms = 0;   // whole frame, GPU time first to last dispatch
+    double median_ms = 0, min_ms = 0, max_ms = 0;  // whole frame, GPU time first to last dispatch
     std::vector<StageSummary> stages;
     uint32_t visible = 0, tile_entries = 0, tile_key_bits = 0;
     uint64_t device_bytes = 0, scene_bytes = 0;

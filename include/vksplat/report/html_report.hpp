@@ -23,6 +23,10 @@ public:
 
     void add_heading(std::string text);
     void add_paragraph(std::string text);
+    // A paragraph that stands out: a summary (bold, on a blue-grey band) or a warning (on yellow,
+    // with a dark yellow edge), e.g. the one-line result at the top of a report.
+    enum class Note { summary, warning };
+    void add_note(std::string text, Note kind);
     // A table with a header row (none when header is empty). Every row must have as many cells as
     // the header (any count when there is no header), else std::invalid_argument. Cells that read
     // as numbers (e.g. "31.42", "-3", "1.5e6", "12.5%") are right-aligned.

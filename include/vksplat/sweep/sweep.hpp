@@ -76,6 +76,9 @@ struct ModelMeasure {
     // of per-view PSNRs would be +infinity as soon as one view is identical); +infinity when all are.
     double psnr_vs_unpruned = 0, ssim_vs_unpruned = 0;
     double ms_per_frame = 0;
+    // The spread behind ms_per_frame: the fastest and slowest frame of each timed view, averaged
+    // over those views; with timing_repetitions 0, the fastest and slowest measuring render.
+    double ms_min = 0, ms_max = 0;
     std::vector<double> view_psnr;     // per test view, against the photos
 };
 
@@ -103,6 +106,10 @@ struct ShDegreeMeasure {
 };
 
 struct SweepResult {
+    std::string device;                // the device's name, as gpu::DeviceInfo gives it
+    // A CPU device (lavapipe, llvmpipe): its frame times say little about any GPU's, e.g. pruned
+    // models there can time slower than the unpruned one.
+    bool device_is_cpu = false;
     SanitizeReport sanitize;
     std::vector<size_t> train_views, test_views;
     std::vector<std::string> test_view_names;
@@ -141,6 +148,12 @@ std::vector<size_t> spread_views(const std::vector<size_t>& views, size_t count)
 // above 0 (the first in the rows' order on a tie); the rows' first method when no fraction is
 // above 0. Re-fitted rows do not compete: the sheets show what pruning alone leaves.
 std::string best_method(const std::vector<SweepRow>& rows);
+
+// The sweep in one line for the top of the report: the prune-only or re-fitted row that drops the
+// most Gaussians within 1 dB of the unpruned PSNR, with its loss and speed-up, e.g. "best trade:
+// blend+recover, 80% fewer Gaussians at -0.42 dB, 2.1x faster (1.20 -> 0.57 ms per frame)"; when
+// no row stays within 1 dB, the row that loses least at the smallest fraction swept, said so.
+std::string summary_line(const SweepResult& result);
 
 // Runs the sweep and writes its files into options.out_dir (created if missing). Refuses, before
 // any work, an out_dir that already holds a sweep's files (unless options.mode says overwrite),
