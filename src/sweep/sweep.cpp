@@ -14,6 +14,7 @@
 
 #include "vksplat/io/output_folders.hpp"
 #include "sweep_parts.hpp"
+#include "work_clock.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
 #include "vksplat/eval/metrics.hpp"
@@ -30,6 +31,16 @@ namespace {
 
 namespace fs = std::filesystem;
 using detail::Targets;
+using detail::Work;
+
+// Where the stages report: the caller's progress, with the time the whole sweep has left.
+struct Reporter {
+    const SweepProgress& progress;
+    detail::WorkClock clock;
+    void step(const std::string& stage, size_t done, size_t total) const {
+        if (progress.step) progress.step(stage, done, total, clock.seconds_left());
+    }
+};
 
 // What the sweep writes into out_dir; any of them there already means an earlier sweep's results.
 const char* const kOutputFiles[] = {"sweep.csv", "sh_degrees.csv", "totals.npy", "report.html"};
@@ -89,11 +100,12 @@ Targets make_targets(Renderer& renderer, const GaussianCloud& cloud, const std::
 
 // The unpruned scene rendered at each SH degree up to its own, against the photos.
 std::vector<ShDegreeMeasure> measure_sh_degrees(Renderer& renderer, const GaussianCloud& cloud, const Targets& targets,
-                                                const SweepOptions& options, const SweepProgress& progress) {
+                                                const SweepOptions& options, Reporter& reporter) {
     std::vector<ShDegreeMeasure> degrees;
     renderer.set_scene(cloud);
     for (int degree = 0; degree <= cloud.sh_degree; ++degree) {
-        if (progress.step) progress.step("SH degrees", size_t(degree), size_t(cloud.sh_degree) + 1);
+        reporter.step("SH degrees", size_t(degree), size_t(cloud.sh_degree) + 1);
+        reporter.clock.begin(Work::render);
         RenderSettings settings = options.settings;
         settings.max_sh_degree = degree;
         ShDegreeMeasure m;
@@ -104,28 +116,31 @@ std::vector<ShDegreeMeasure> measure_sh_degrees(Renderer& renderer, const Gaussi
             m.view_psnr.push_back(eval::psnr(image.rgb.data(), targets.photos[v].data(), image.width, image.height));
             m.psnr += m.view_psnr.back();
             m.ssim += eval::ssim(image.rgb.data(), targets.photos[v].data(), image.width, image.height);
+            reporter.clock.advance(1);
         }
         m.psnr /= double(targets.cameras.size());
         m.ssim /= double(targets.cameras.size());
         degrees.push_back(std::move(m));
     }
-    if (progress.step) progress.step("SH degrees", size_t(cloud.sh_degree) + 1, size_t(cloud.sh_degree) + 1);
+    reporter.step("SH degrees", size_t(cloud.sh_degree) + 1, size_t(cloud.sh_degree) + 1);
     return degrees;
 }
 
 // What rendering the training views costs without statistics: the yardstick for scoring.
 double plain_render_seconds(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                             const std::vector<size_t>& views, const RenderSettings& settings,
-                            const SweepProgress& progress) {
+                            Reporter& reporter) {
     renderer.set_scene(cloud);
     double seconds = 0;
+    reporter.clock.begin(Work::plain_view);
     for (size_t i = 0; i < views.size(); ++i) {
-        if (progress.step) progress.step("plain renders of the training views", i, views.size());
+        reporter.step("plain renders of the training views", i, views.size());
         const auto start = std::chrono::steady_clock::now();
         renderer.render(cameras[views[i]], settings);
         seconds += seconds_since(start);
+        reporter.clock.advance(1);
     }
-    if (progress.step) progress.step("plain renders of the training views", views.size(), views.size());
+    reporter.step("plain renders of the training views", views.size(), views.size());
     return seconds;
 }
 
@@ -137,7 +152,7 @@ size_t kept_count(size_t n, double fraction) { return n - size_t(std::llround(fr
 std::vector<fs::path> write_sheets(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking,
                                    const std::string& name, const std::vector<double>& fractions,
                                    const Targets& targets, const SweepOptions& options,
-                                   const std::vector<std::string>& stems, const SweepProgress& progress) {
+                                   const std::vector<std::string>& stems, Reporter& reporter) {
     std::vector<fs::path> sheets;
     const size_t total = fractions.size() * targets.cameras.size();
     for (double fraction : fractions) {
@@ -145,7 +160,8 @@ std::vector<fs::path> write_sheets(Renderer& renderer, const GaussianCloud& clou
         renderer.set_scene(pruned);
         const std::string label = fraction_label(fraction);
         for (size_t v = 0; v < targets.cameras.size(); ++v) {
-            if (progress.step) progress.step("comparison sheets", sheets.size(), total);
+            reporter.step("comparison sheets", sheets.size(), total);
+            reporter.clock.begin(Work::sheet);
             const RenderOutput image = renderer.render(targets.cameras[v], options.settings);
             const int w = image.width, h = image.height;
             const fs::path relative = fs::path("sheets") / (stems[v] + "_" + name + "_" + label + ".png");
@@ -158,9 +174,11 @@ std::vector<fs::path> write_sheets(Renderer& renderer, const GaussianCloud& clou
                                       "error vs unpruned")},
                 options.mode);
             sheets.push_back(relative);
+            reporter.clock.advance(1);
         }
     }
-    if (progress.step) progress.step("comparison sheets", total, total);
+    reporter.clock.end();
+    reporter.step("comparison sheets", total, total);
     return sheets;
 }
 
@@ -188,19 +206,64 @@ jobs::RecoverOptions recover_schedule(const SweepResult& result, const SweepOpti
 SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking, size_t keep,
                      const std::string& method, const SweepRow& pruned, const std::vector<Camera>& cameras,
                      const jobs::PhotoSource& photos, const Targets& targets, const SweepResult& result,
-                     const SweepOptions& options) {
+                     const SweepOptions& options, Reporter& reporter) {
     jobs::RecoverOptions recover = recover_schedule(result, options);
     recover.method = method == kClusterMethod ? prune::ScoreMethod::blend : prune::parse_score_method(method);
+    // One stage per re-fit, its iterations counted over all its rounds.
+    const std::string stage = "re-fit of " + method + " at " + fraction_label(pruned.fraction) + " dropped";
+    const uint64_t iterations = options.recover_iterations;
+    uint64_t reported = 0;
+    const auto refit_progress = [&](int round, const train::LoopStatus& status) {
+        uint64_t done = status.iteration;
+        for (int r = 1; r < round; ++r) done += jobs::round_iterations(iterations, r, recover.rounds);
+        reporter.clock.advance(double(done - std::min(done, reported)));
+        reported = std::max(reported, done);
+        reporter.step(stage, size_t(reported), size_t(iterations));
+    };
+    reporter.step(stage, 0, size_t(iterations));
+    reporter.clock.begin(Work::refit_iteration);
     const auto start = std::chrono::steady_clock::now();
-    const jobs::RecoverResult refit = jobs::prune_and_recover(renderer.context(), renderer, cloud, ranking,
-                                                  std::min(keep, ranking.candidates()), cameras, photos, recover);
+    const jobs::RecoverResult refit =
+        jobs::prune_and_recover(renderer.context(), renderer, cloud, ranking, std::min(keep, ranking.candidates()),
+                                cameras, photos, recover, {}, refit_progress);
     SweepRow row = pruned;
     row.method = method + kRecoverSuffix;
     row.recover_seconds = seconds_since(start);
-    row.recover_iterations = options.recover_iterations;
+    row.recover_iterations = iterations;
+    reporter.clock.advance(double(iterations - std::min(iterations, reported)));  // steps the loop did not report
+    reporter.clock.begin(Work::measure);
     row.measure = detail::measure_model(renderer, refit.cloud, targets, options);
+    reporter.clock.advance(1);
     row.delta_psnr = row.measure.psnr - result.unpruned.psnr;
     return row;
+}
+
+// The views cluster pruning renders regions of (at most max_views of them, 0: all).
+size_t cluster_region_views(const jobs::ClusterOptions& cluster) {
+    return cluster.max_views == 0 ? cluster.views.size() : std::min(cluster.views.size(), cluster.max_views);
+}
+
+// The sweep's work, for the time left: every render, model measured, training view scored, re-fit
+// iteration and sheet it will do. Cluster pruning's region views count as scoring views (each is a
+// render and a segmentation), until its own time is known.
+void plan_work(detail::WorkClock& clock, const GaussianCloud& cloud, size_t rankings,
+               const std::vector<double>& fractions, const SweepResult& result, const SweepOptions& options) {
+    const double test_views = double(result.test_views.size()), train_views = double(result.train_views.size());
+    const size_t refits =
+        options.recover_iterations > 0
+            ? rankings * size_t(std::count_if(fractions.begin(), fractions.end(), [](double f) { return f > 0; }))
+            : 0;
+    clock.plan(Work::render, test_views * double(cloud.sh_degree + 2));  // targets, then each SH degree
+    clock.plan(Work::measure, double(1 + rankings * fractions.size() + refits));
+    clock.plan(Work::scoring_view, train_views);
+    if (options.cluster) {
+        jobs::ClusterOptions cluster = options.cluster_options;
+        if (cluster.views.empty()) cluster.views = result.train_views;
+        clock.plan(Work::scoring_view, double(cluster_region_views(cluster)));
+    }
+    if (options.compare_scoring_cost) clock.plan(Work::plain_view, train_views);
+    clock.plan(Work::refit_iteration, double(refits * options.recover_iterations));
+    clock.plan(Work::sheet, double(swept_sheet_fractions(options, fractions).size()) * test_views);
 }
 
 }  // namespace
@@ -279,23 +342,33 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
         photos = jobs::photos_in_folder(options.images_dir, options.settings.background);
         jobs::check_recover(recover_schedule(result, options), cameras, *photos);
     }
+    Reporter reporter{progress, {}};
+    plan_work(reporter.clock, cloud, methods.size() + (options.cluster ? 1 : 0), fractions, result, options);
     const char* const unpruned_stage = "photos and the unpruned scene";
-    if (progress.step) progress.step(unpruned_stage, 0, 2);
+    reporter.step(unpruned_stage, 0, 2);
+    reporter.clock.begin(Work::render);
     const Targets targets = make_targets(renderer, cloud, test_cameras, options);
-    if (progress.step) progress.step(unpruned_stage, 1, 2);
+    reporter.clock.advance(double(test_cameras.size()));
+    reporter.step(unpruned_stage, 1, 2);
+    reporter.clock.begin(Work::measure);
     result.unpruned = detail::measure_model(renderer, cloud, targets, options);
-    if (progress.step) progress.step(unpruned_stage, 2, 2);
-    result.sh_degrees = measure_sh_degrees(renderer, cloud, targets, options, progress);
+    reporter.clock.advance(1);
+    reporter.step(unpruned_stage, 2, 2);
+    result.sh_degrees = measure_sh_degrees(renderer, cloud, targets, options, reporter);
 
     const auto scoring_start = std::chrono::steady_clock::now();
+    reporter.clock.begin(Work::scoring_view);
+    size_t scored = 0;
     const prune::ViewTotals totals = prune::accumulate(
         renderer, cloud, cameras, result.train_views, options.settings, [&](size_t done, size_t total) {
-            if (progress.step) progress.step("scoring the training views", done, total);
+            reporter.clock.advance(double(done - std::min(done, scored)));
+            scored = std::max(scored, done);
+            reporter.step("scoring the training views", done, total);
         });
     result.scoring_seconds = seconds_since(scoring_start);
     if (options.compare_scoring_cost)
         result.plain_render_seconds =
-            plain_render_seconds(renderer, cloud, cameras, result.train_views, options.settings, progress);
+            plain_render_seconds(renderer, cloud, cameras, result.train_views, options.settings, reporter);
     const prune::KeepMask candidates = prune::lossless_mask(totals);
     result.lossless_dropped = cloud.size() - prune::count_kept(candidates);
 
@@ -305,18 +378,24 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     const auto sweep_ranking = [&](const std::string& method, const prune::Ranking& ranking) {
         std::vector<SweepRow> recovered;
         for (double fraction : fractions) {
-            if (progress.step) progress.step("sweep", result.rows.size(), total_rows);
+            reporter.step("sweep", result.rows.size(), total_rows);
             const size_t keep = kept_count(cloud.size(), fraction);
             SweepRow row;
             row.method = method;
             row.fraction = fraction;
+            reporter.clock.begin(Work::measure);
             if (keep >= ranking.candidates()) {
-                if (!lossless_only)
+                if (lossless_only) {
+                    reporter.clock.plan(Work::measure, -1);  // measured once already
+                } else {
                     lossless_only = detail::measure_model(renderer, cloud.subset(candidates), targets, options);
+                    reporter.clock.advance(1);
+                }
                 row.measure = *lossless_only;
             } else {
                 row.measure = detail::measure_model(renderer, cloud.subset(ranking.keep_best(keep)), targets,
                                                           options);
+                reporter.clock.advance(1);
             }
             row.dropped = cloud.empty() ? 0.0 : 1.0 - double(row.measure.gaussians) / double(cloud.size());
             row.delta_psnr = row.measure.psnr - result.unpruned.psnr;
@@ -324,7 +403,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             if (progress.row) progress.row(result.rows.back());
             if (photos && fraction > 0) {
                 recovered.push_back(recover_row(renderer, cloud, ranking, keep, method, row, cameras, *photos, targets,
-                                                result, options));
+                                                result, options, reporter));
                 if (progress.row) progress.row(recovered.back());
             }
         }
@@ -335,17 +414,19 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
                       prune::Ranking(prune::score(cloud, totals, method, options.seed), candidates));
     std::vector<float> cluster_scores;
     if (options.cluster) {
-        if (progress.step) progress.step("cluster pruning's stages", 0, 1);
+        reporter.step("cluster pruning's stages", 0, 1);
+        reporter.clock.begin(Work::scoring_view);
         jobs::ClusterOptions cluster = options.cluster_options;
         if (cluster.views.empty()) cluster.views = result.train_views;
         cluster.settings.background = options.settings.background;
         const auto cluster_start = std::chrono::steady_clock::now();
         cluster_scores = jobs::cluster_gaussian_scores(renderer, renderer.context(), cloud, cameras, cluster);
         result.cluster_seconds = seconds_since(cluster_start);
-        if (progress.step) progress.step("cluster pruning's stages", 1, 1);
+        reporter.clock.advance(double(cluster_region_views(cluster)));
+        reporter.step("cluster pruning's stages", 1, 1);
         sweep_ranking(kClusterMethod, prune::Ranking(cluster_scores, candidates));
     }
-    if (progress.step) progress.step("sweep", total_rows, total_rows);
+    reporter.step("sweep", total_rows, total_rows);
 
     result.best_method = best_method(result.rows);
     result.sheet_fractions = swept_sheet_fractions(options, fractions);
@@ -357,7 +438,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     folders.create(options.out_dir / "sheets");
     folders.create(options.out_dir / "charts");
     result.sheets = write_sheets(renderer, cloud, best_ranking, result.best_method, result.sheet_fractions, targets,
-                                 options, stems, progress);
+                                 options, stems, reporter);
 
     result.csv = fs::absolute(options.out_dir / "sweep.csv");
     result.sh_csv = fs::absolute(options.out_dir / "sh_degrees.csv");

@@ -1,6 +1,7 @@
 // vksplat sweep: every pruning method at a list of dropped fractions, measured and charted.
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "cluster_options.hpp"
@@ -92,10 +93,10 @@ int run_sweep(const SweepArgs& args) {
     std::string stage;
     sweep::SweepProgress progress;
     ChunkReport chunks;
-    progress.step = [&](const std::string& name, size_t done, size_t total) {
+    progress.step = [&](const std::string& name, size_t done, size_t total, std::optional<double> seconds_left) {
         chunks.saw(renderer.last_frame().chunks);
         if (name != stage || !line) line = std::make_unique<ProgressLine>(name), stage = name;
-        line->update(done, total);
+        line->update(done, total, seconds_left);
     };
     progress.row = print_row;
     const sweep::SweepResult result = sweep::sweep_scene(renderer, cloud, cameras, options, progress);

@@ -17,6 +17,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -129,8 +130,12 @@ struct SweepResult {
 };
 
 struct SweepProgress {
-    // A stage ("scoring", "sweep", ...) with `done` of `total` steps finished.
-    std::function<void(const std::string& stage, size_t done, size_t total)> step;
+    // A stage ("scoring the training views", "sweep", "re-fit of blend at 0.5 dropped", ...) with
+    // `done` of `total` steps finished, and the seconds the whole sweep has left: every stage still
+    // to come, scoring and re-fits included, each from the time its kind of work has taken so far
+    // (re-fit iterations from the re-fits so far). nullopt while some work to come is of a kind not
+    // yet timed (before the first re-fit has stepped).
+    std::function<void(const std::string& stage, size_t done, size_t total, std::optional<double> seconds_left)> step;
     std::function<void(const SweepRow&)> row;  // each row as it is measured
 };
 
