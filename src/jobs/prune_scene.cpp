@@ -4,12 +4,15 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
+#include <span>
 #include <string>
 
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
+#include "vksplat/prune/sh_reduction.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -43,6 +46,18 @@ void check_options(const PruneOptions& options) {
     if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::QualityBudget>(options.selector))
         throw InputError("--rounds " + std::to_string(options.recover->rounds),
                          "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
+    if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::SizeBudget>(options.selector))
+        throw InputError("--rounds " + std::to_string(options.recover->rounds),
+                         "a size budget re-fits the model it chose once: use one round with --max-mb");
+}
+
+// The size budget of options.selector in the output's format (prune/size_budget.hpp).
+std::optional<prune::SizeBudget> size_budget(const PruneOptions& options) {
+    const auto* size = std::get_if<prune::SizeBudget>(&options.selector);
+    if (!size) return std::nullopt;
+    prune::SizeBudget budget = *size;
+    budget.format = io::scene_format_named(options.out);
+    return budget;
 }
 
 // The scores, the Gaussians still in play after the lossless pass, and the totals behind both
@@ -94,6 +109,13 @@ prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCl
         return prune::select_ratio(scored.scores, ratio->ratio, scored.candidates);
     if (const auto* count = std::get_if<KeepCount>(&options.selector))
         return prune::select_count(scored.scores, count->count, scored.candidates);
+    if (const auto size = size_budget(options)) {
+        const std::span<const double> weights = scored.totals ? std::span<const double>(scored.totals->blend)
+                                                              : std::span<const double>();
+        result.budget = prune::fit_size_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates), weights,
+                                               targets, *size, options.settings, progress.probe);
+        return result.budget->keep;
+    }
     result.budget = prune::fit_quality_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates), targets,
                                               std::get<prune::QualityBudget>(options.selector), options.settings,
                                               progress.probe);
@@ -114,8 +136,24 @@ PhotoSource recover_photos(const PruneOptions& options) {
     return photos_in_folder(*options.images_dir, options.settings.background);
 }
 
+// The model a size budget chose (`keep` of `cloud`, scored by `scores`), re-fitted: the SH bands it
+// had dropped are dropped again, and its least Gaussians go until its file fits the budget again.
+GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, const prune::KeepMask& keep,
+                           const std::vector<float>& scores, const prune::SizeBudget& budget) {
+    const GaussianCloud reduced = prune::with_sh_degrees(refitted, prune::sh_degrees_in_use(chosen));
+    std::vector<float> kept_scores;
+    for (size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) kept_scores.push_back(scores[i]);
+    const prune::Ranking ranking(kept_scores, prune::keep_all(reduced.size()));
+    const size_t kept = prune::largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
+        return prune::scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
+    });
+    return kept == reduced.size() ? reduced : reduced.subset(ranking.keep_best(kept));
+}
+
 // Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
-// measured; otherwise the selector's count is reached in the rounds asked for.
+// measured; with a size budget, the model chosen is re-fitted; otherwise the selector's count is
+// reached in the rounds asked for.
 GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
                       const std::vector<Camera>& cameras, const Scored& scored, const eval::TestViews& targets,
                       const PruneOptions& options, const PruneProgress& progress) {
@@ -138,6 +176,17 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         result.budget = prune::fit_quality_budget(renderer, cloud, ranking, targets, refitted, options.settings,
                                                   progress.probe);
         return result.budget->model ? std::move(*result.budget->model) : cloud.subset(result.budget->keep);
+    }
+    if (const auto size = size_budget(options)) {
+        select(result, renderer, cloud, scored, targets, options, progress);
+        const GaussianCloud chosen = std::move(*result.budget->model);
+        result.budget->model.reset();
+        FinetuneOptions finetune = recover.finetune;
+        finetune.iterations = recover.iterations;
+        const GaussianCloud refitted =
+            finetune_scene(context, chosen, cameras, photos, finetune, {}, [&](const train::LoopStatus& s) { report(1, s); })
+                .cloud;
+        return fit_refitted(chosen, refitted, result.budget->keep, scored.scores, *size);
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
     RecoverResult recovered = prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos, recover,
@@ -164,6 +213,12 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     result.count_before = cloud.size();
     result.bytes_before = cloud.ply_bytes();
     result.sh_degree_before = cloud.sh_degree;
+    // A size no model reaches is refused before any rendering (one Gaussian at degree 0 is the least).
+    if (const auto size = size_budget(options)) {
+        prune::KeepMask first(cloud.size(), 0);
+        if (!first.empty()) first[0] = 1;
+        prune::check_size_reachable(cloud.subset(first).with_sh_degree(0), *size);
+    }
 
     // Photos are read before the long part, so that a missing one is reported at once.
     const std::vector<Camera> test_cameras = pick(cameras, result.test_views);
@@ -188,7 +243,9 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     GaussianCloud pruned;
     if (!options.recover) {
         pruned = cloud.subset(select(result, renderer, cloud, scored, targets, options, progress));
-        if (result.budget && result.budget->sh_degree < pruned.sh_degree)
+        if (result.budget && result.budget->model)  // a size budget's: SH bands dropped per Gaussian
+            pruned = std::move(*result.budget->model);
+        else if (result.budget && result.budget->sh_degree < pruned.sh_degree)
             pruned = pruned.with_sh_degree(result.budget->sh_degree);
     } else {
         pruned = recover(result, renderer, cloud, cameras, scored, targets, options, progress);

@@ -10,10 +10,8 @@
 #include "vksplat/error.hpp"
 
 namespace vksplat::prune {
-namespace {
 
-// The drop of a probe as quality_budget.hpp defines it.
-double drop(const eval::Quality& quality, const eval::TestViews& views, double baseline_psnr, double assumed_psnr) {
+double psnr_drop(const eval::Quality& quality, const eval::TestViews& views, double baseline_psnr, double assumed_psnr) {
     // Equal means (+infinity on both sides included, which a difference would make NaN) drop nothing.
     if (views.photos) return quality.mean_psnr == baseline_psnr ? 0.0 : baseline_psnr - quality.mean_psnr;
     // d / m0 = 10^((P - psnr) / 10) per view; an identical view (psnr = +inf) adds nothing.
@@ -21,8 +19,6 @@ double drop(const eval::Quality& quality, const eval::TestViews& views, double b
     for (double psnr : quality.psnr) sum += 10.0 * std::log10(1.0 + std::pow(10.0, (assumed_psnr - psnr) / 10.0));
     return quality.psnr.empty() ? 0.0 : sum / double(quality.psnr.size());
 }
-
-}  // namespace
 
 BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
                                 const eval::TestViews& views, const QualityBudget& budget,
@@ -45,7 +41,7 @@ BudgetResult fit_quality_budget(Renderer& renderer, const GaussianCloud& cloud, 
         p.kept = kept;
         p.sh_degree = sh_degree;
         p.psnr = quality.mean_psnr;
-        p.drop = drop(quality, views, result.baseline_psnr, budget.assumed_psnr);
+        p.drop = psnr_drop(quality, views, result.baseline_psnr, budget.assumed_psnr);
         p.meets = p.drop <= budget.max_psnr_drop;
         p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         result.probes.push_back(p);

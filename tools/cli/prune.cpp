@@ -21,7 +21,7 @@ struct PruneArgs {
     std::string scene, cameras, out, method, images, test_views, train_views;
     std::string save_scores, save_totals, load_scores;
     std::optional<float> threshold;
-    std::optional<double> ratio, max_psnr_drop;
+    std::optional<double> ratio, max_psnr_drop, max_mb;
     std::optional<size_t> keep;
     bool allow_sh_reduction = false;
     std::vector<float> background{0, 0, 0};
@@ -42,6 +42,11 @@ jobs::PruneSelector selector(const PruneArgs& args) {
     if (args.threshold) return jobs::DropAtOrBelow{*args.threshold};
     if (args.ratio) return jobs::DropRatio{*args.ratio};
     if (args.keep) return jobs::KeepCount{*args.keep};
+    if (args.max_mb) {
+        prune::SizeBudget size;
+        size.max_bytes = static_cast<size_t>(*args.max_mb * 1e6);  // megabytes of 10^6 bytes, rounded down
+        return size;
+    }
     prune::QualityBudget budget;
     if (args.max_psnr_drop) budget.max_psnr_drop = *args.max_psnr_drop;
     budget.allow_sh_reduction = args.allow_sh_reduction;
@@ -49,8 +54,11 @@ jobs::PruneSelector selector(const PruneArgs& args) {
 }
 
 void print_probe(const prune::BudgetProbe& probe) {
-    std::printf("probe: keep %zu, SH %d: PSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.kept, probe.sh_degree,
-                probe.psnr, probe.drop, probe.seconds, probe.meets ? "within budget" : "over budget");
+    std::printf("probe: keep %zu, SH %d", probe.kept, probe.sh_degree);
+    if (probe.sh_share > 0) std::printf(" with %.0f%% of the higher bands dropped per Gaussian", 100.0 * probe.sh_share);
+    if (probe.bytes > 0) std::printf(", %.3f MB", double(probe.bytes) / 1e6);
+    std::printf(": PSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.psnr, probe.drop, probe.seconds,
+                probe.meets ? "within budget" : "over budget");
     std::fflush(stdout);  // one line per probe as it happens, also when stdout is a pipe
 }
 
@@ -100,7 +108,8 @@ int run_prune(const PruneArgs& args) {
     if (args.recover) {
         jobs::RecoverOptions recover;
         recover.iterations = *args.recover;
-        const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector);
+        const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector) ||
+                            std::holds_alternative<prune::SizeBudget>(options.selector);
         recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
         if (args.position_lr == "final") recover.finetune.train.position_schedule = train::PositionSchedule::final_rate;
         options.recover = recover;
@@ -147,8 +156,10 @@ void register_prune(CLI::App& app, Action& action) {
     command->footer(
         "Selection (one of; default --max-psnr-drop 0.1): --threshold drops score <= T, --ratio drops the\n"
         "lowest fraction R, --keep keeps the best N, --max-psnr-drop finds the smallest model whose mean\n"
-        "PSNR on the test views drops at most D dB. Every method first drops the Gaussians that touch no\n"
-        "pixel of the training views (lossless on those views).\n"
+        "PSNR on the test views drops at most D dB, --max-mb keeps the model of least PSNR drop whose file\n"
+        "(in the output's format) fits in M megabytes, trading Gaussians against SH bands dropped per\n"
+        "Gaussian. Every method first drops the Gaussians that touch no pixel of the training views\n"
+        "(lossless on those views).\n"
         "Example:\n  vksplat prune lego/point_cloud.ply --cameras lego/cameras.json --method blend \\\n"
         "      --ratio 0.5 --images lego/images --background 1,1,1 -o lego_half.ply\n"
         "  (add --recover 5000 to re-fit what is kept to the photos: see vksplat finetune)");
@@ -168,13 +179,18 @@ void register_prune(CLI::App& app, Action& action) {
     auto* budget = command->add_option("--max-psnr-drop", args->max_psnr_drop,
                                        "smallest model losing at most D dB of mean PSNR on the test views")
                        ->check(number_in(0.0));
-    threshold->excludes(ratio, keep, budget);
-    ratio->excludes(keep, budget);
-    keep->excludes(budget);
+    auto* max_mb = command->add_option("--max-mb", args->max_mb,
+                                       "best model whose output file fits in M megabytes (10^6 bytes), SH bands\n"
+                                       "dropped per Gaussian where the format stores zeros compactly (.spz)")
+                       ->check(positive_number());
+    threshold->excludes(ratio, keep, budget, max_mb);
+    ratio->excludes(keep, budget, max_mb);
+    keep->excludes(budget, max_mb);
+    budget->excludes(max_mb);
     command
         ->add_flag("--allow-sh-reduction", args->allow_sh_reduction,
                    "with the PSNR budget, also try fewer SH bands at the count found")
-        ->excludes(threshold, ratio, keep);
+        ->excludes(threshold, ratio, keep, max_mb);
     command->add_option("--images", args->images, "photos to measure quality against (else the unpruned render)")
         ->check(CLI::ExistingDirectory);
     command->add_option("--test-views", args->test_views,
@@ -193,11 +209,13 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--seed", args->seed, "seed of the random method")->check(count_in(0));
     auto* recover = command->add_option("--recover", args->recover,
                         "re-fit the kept Gaussians to the photos for N iterations (needs --images); with\n"
-                        "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting")
+                        "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting;\n"
+                        "with --max-mb the model chosen is re-fitted, and still fits")
         ->check(count_in(1));
     auto* rounds = command->add_option("--rounds", args->rounds,
-                                       "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop),\n"
-                                       "each dropping a geometrically growing share, ranked on the re-fitted model")
+                                       "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop\n"
+                                       "or --max-mb), each dropping a geometrically growing share, ranked on the\n"
+                                       "re-fitted model")
                        ->check(count_in(1, 100));
     auto* position_lr = command->add_option("--position-lr", args->position_lr,
                                             "with --recover: decay (default) the position rate from its initial to\n"

@@ -18,6 +18,7 @@
 #include "vksplat/eval/quality.hpp"
 #include "vksplat/prune/quality_budget.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/size_budget.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::jobs {
@@ -32,7 +33,8 @@ struct DropRatio {
 struct KeepCount {
     size_t count = 0;
 };
-using PruneSelector = std::variant<DropAtOrBelow, DropRatio, KeepCount, prune::QualityBudget>;
+// A size budget's format is the output's (set by the job); see prune/size_budget.hpp.
+using PruneSelector = std::variant<DropAtOrBelow, DropRatio, KeepCount, prune::QualityBudget, prune::SizeBudget>;
 
 struct PruneOptions {
     prune::ScoreMethod method = prune::ScoreMethod::blend;
@@ -52,7 +54,9 @@ struct PruneOptions {
     // scores of `method` and carries no pixel counts, so the lossless pass is then skipped.
     std::optional<std::filesystem::path> load_scores;
     // Re-fit what is kept to the photos (needs images_dir); see jobs/prune_recover.hpp. With a
-    // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting.
+    // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting. With
+    // a SizeBudget the model chosen is re-fitted (one round), the SH bands it had dropped are
+    // dropped again, and if its file then outgrows the budget its least Gaussians go until it fits.
     std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene, in the format its name says (io::write_scene)
     io::WriteMode mode = io::WriteMode::refuse_existing;
@@ -75,7 +79,7 @@ struct PruneResult {
     // scene against the photos, else against the renders of the input.
     std::optional<eval::Quality> before;
     eval::Quality after;
-    std::optional<prune::BudgetResult> budget;  // with a QualityBudget selector: every probe
+    std::optional<prune::BudgetResult> budget;  // with a Quality- or SizeBudget selector: every probe
     std::vector<size_t> recover_rounds;         // with recover and no budget: Gaussians kept in each round
 };
 

@@ -35,6 +35,8 @@ struct QualityBudget {
 struct BudgetProbe {
     size_t kept = 0;
     int sh_degree = 0;
+    double sh_share = 0;  // of the higher bands, dropped per Gaussian (prune/sh_reduction.hpp)
+    size_t bytes = 0;     // the model's file, where a size budget measured it; else 0
     double psnr = 0;      // mean over the test views against the targets
     double drop = 0;      // dB, as defined above
     double seconds = 0;   // wall time of the probe: subset, upload, renders, metrics
@@ -52,9 +54,15 @@ struct BudgetResult {
     bool met = false;
     std::vector<BudgetProbe> probes;
     // With QualityBudget::refit: the chosen probe's re-fitted model (re-fitting again would not
-    // give it back exactly: float atomics sum gradients in varying order).
+    // give it back exactly: float atomics sum gradients in varying order). From a size budget: the
+    // model chosen, SH bands dropped per Gaussian included.
     std::optional<GaussianCloud> model;
 };
+
+// The drop of a model measured as `quality` on `views`, as defined above (`baseline_psnr` is the
+// unpruned scene's mean PSNR against photos; unused against renders).
+double psnr_drop(const eval::Quality& quality, const eval::TestViews& views, double baseline_psnr,
+                 double assumed_psnr);
 
 // `cloud` is the unpruned scene, `ranking` orders its candidates (see selection.hpp). Probes are
 // made of cloud.subset(ranking.keep_best(K)) at the cloud's SH degree (and lower ones, when

@@ -1,0 +1,49 @@
+#pragma once
+// The best model that fits in a number of bytes as a file of a given format: Gaussian count traded
+// against SH bands by measurement.
+//
+// The SH choices tried: every Gaussian at the cloud's degree D with a share s of its higher bands
+// dropped per Gaussian (s = 0, 1/2D, 2/2D, ..., 1; prune/sh_reduction.hpp, among the Gaussians
+// kept), and the whole cloud at each degree between 1 and D - 1. Dropping bands per Gaussian only
+// shrinks a file whose format compresses zeros (SPZ); a choice whose file of every candidate is no
+// smaller than that of the unreduced one is skipped unmeasured, as it can only keep fewer
+// Gaussians and less colour. For every other choice, a bisection on the count kept (best first,
+// as a Ranking orders them) finds the most Gaussians whose file fits, each probe writing the file;
+// each choice's model is then rendered on the test views, and the one of least PSNR drop (as
+// quality_budget.hpp defines it) is kept. When every candidate at full SH fits, that is the model.
+#include <cstddef>
+#include <functional>
+#include <span>
+#include <string>
+
+#include "vksplat/prune/quality_budget.hpp"
+
+namespace vksplat::prune {
+
+struct SizeBudget {
+    size_t max_bytes = 0;
+    std::string format;          // as io::write_scene names it ("spz", "compressed-ply", ...)
+    double assumed_psnr = 30.0;  // dB, used only without photos (see quality_budget.hpp)
+};
+
+// The bytes `cloud` takes as a file of `format`, written to a temporary file that is then removed.
+size_t scene_file_bytes(const GaussianCloud& cloud, const std::string& format);
+
+// The largest count in [1, most] whose `bytes_of(count)` is at most `max_bytes`, by bisection (so
+// bytes_of must not fall as the count grows); 0 when not even a count of 1 fits, or most is 0.
+size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t(size_t)>& bytes_of);
+
+// Throws InputError, naming the smallest size reachable, unless `smallest` (the smallest model
+// there can be: one Gaussian at SH degree 0, or an empty cloud) fits the budget as its format.
+void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budget);
+
+// `cloud` is the unpruned scene, `ranking` orders its candidates, `weights` (empty, or one per
+// Gaussian of `cloud`: prune::ViewTotals::blend) say what SH bands cost (sh_reduction.hpp). The
+// result's model is the one chosen and `probes` hold each choice's measured model. Throws
+// InputError when no model fits (check_size_reachable).
+BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
+                             std::span<const double> weights, const eval::TestViews& views, const SizeBudget& budget,
+                             const RenderSettings& settings,
+                             const std::function<void(const BudgetProbe&)>& on_probe = {});
+
+}  // namespace vksplat::prune

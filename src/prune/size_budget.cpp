@@ -1,0 +1,164 @@
+// The best model within a file size: per SH choice the most Gaussians that fit, then the one of
+// least PSNR drop.
+#include "vksplat/prune/size_budget.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <stdexcept>
+
+#include "vksplat/error.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/prune/sh_reduction.hpp"
+
+namespace vksplat::prune {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The cloud at `degree`, with `share` of its higher bands then dropped per Gaussian.
+struct ShChoice {
+    int degree = 0;
+    double share = 0;
+};
+
+// The choices size_budget.hpp lists, the unreduced one first.
+std::vector<ShChoice> sh_choices(int degree) {
+    std::vector<ShChoice> choices;
+    const int steps = 2 * degree;
+    for (int s = 0; s <= steps; ++s) choices.push_back({degree, steps ? double(s) / double(steps) : 0.0});
+    for (int d = degree - 1; d >= 1; --d) choices.push_back({d, 0.0});
+    return choices;
+}
+
+std::vector<double> kept_values(std::span<const double> values, const KeepMask& keep) {
+    std::vector<double> kept;
+    if (values.empty()) return kept;
+    for (size_t i = 0; i < keep.size(); ++i)
+        if (keep[i]) kept.push_back(values[i]);
+    return kept;
+}
+
+std::string megabytes(size_t bytes) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.6g MB", double(bytes) / 1e6);
+    return text;
+}
+
+}  // namespace
+
+size_t scene_file_bytes(const GaussianCloud& cloud, const std::string& format) {
+    std::string path = (fs::temp_directory_path() / "vksplat-size-XXXXXX").string();
+    const int fd = mkstemp(path.data());  // a name no one else holds
+    if (fd < 0) throw std::runtime_error("prune::scene_file_bytes: cannot create a temporary file " + path);
+    close(fd);
+    struct Remove {
+        std::string path;
+        ~Remove() {
+            std::error_code ignored;
+            fs::remove(path, ignored);
+        }
+    } remove{path};
+    io::write_scene(cloud, path, io::WriteMode::overwrite, format);
+    return fs::file_size(path);
+}
+
+size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t(size_t)>& bytes_of) {
+    if (most == 0 || bytes_of(1) > max_bytes) return 0;
+    if (bytes_of(most) <= max_bytes) return most;
+    size_t low = 1, high = most - 1;  // low fits; the answer lies in [low, high]
+    while (low < high) {
+        const size_t mid = low + (high - low + 1) / 2;
+        if (bytes_of(mid) <= max_bytes)
+            low = mid;
+        else
+            high = mid - 1;
+    }
+    return low;
+}
+
+void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budget) {
+    const size_t bytes = scene_file_bytes(smallest, budget.format);
+    if (bytes <= budget.max_bytes) return;
+    const std::string what = smallest.empty() ? "a scene of no Gaussians" : "one Gaussian at SH degree 0";
+    throw InputError("--max-mb " + megabytes(budget.max_bytes),
+                     "no model fits in it: the smallest, " + what + ", takes " + std::to_string(bytes) + " bytes (" +
+                         megabytes(bytes) + ") as " + budget.format);
+}
+
+BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
+                             std::span<const double> weights, const eval::TestViews& views, const SizeBudget& budget,
+                             const RenderSettings& settings, const std::function<void(const BudgetProbe&)>& on_probe) {
+    if (ranking.size() != cloud.size())
+        throw std::invalid_argument("prune::fit_size_budget: the ranking is not of this cloud");
+    if (!weights.empty() && weights.size() != cloud.size())
+        throw std::invalid_argument("prune::fit_size_budget: the weights are not of this cloud");
+    const size_t most = ranking.candidates();
+    const auto model_of = [&](size_t kept, const ShChoice& choice) {
+        const KeepMask keep = ranking.keep_best(kept);
+        GaussianCloud model = cloud.subset(keep);
+        if (choice.degree != model.sh_degree) model = model.with_sh_degree(choice.degree);
+        if (choice.share > 0)
+            model = with_sh_degrees(model, reduced_sh_degrees(model, kept_values(weights, keep), choice.share));
+        return model;
+    };
+    const std::vector<ShChoice> choices = sh_choices(cloud.sh_degree);
+    // The last per-Gaussian choice drops every higher band: its best Gaussian is the smallest model.
+    check_size_reachable(model_of(std::min<size_t>(most, 1), choices[size_t(2 * cloud.sh_degree)]), budget);
+
+    BudgetResult result;
+    result.met = true;
+    if (views.photos) result.baseline_psnr = eval::measure_quality(renderer, cloud, views, settings, false).mean_psnr;
+    const auto probe = [&](size_t kept, const ShChoice& choice, size_t bytes) {
+        const auto start = std::chrono::steady_clock::now();
+        GaussianCloud model = model_of(kept, choice);
+        const eval::Quality quality = eval::measure_quality(renderer, model, views, settings, false);
+        BudgetProbe p;
+        p.kept = kept;
+        p.sh_degree = model.sh_degree;
+        p.sh_share = choice.share;
+        p.bytes = bytes;
+        p.psnr = quality.mean_psnr;
+        p.drop = psnr_drop(quality, views, result.baseline_psnr, budget.assumed_psnr);
+        p.meets = true;
+        p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        result.probes.push_back(p);
+        if (on_probe) on_probe(p);
+        if (!result.model || p.drop < result.drop) {
+            result.model = std::move(model);
+            result.kept = p.kept;
+            result.sh_degree = p.sh_degree;
+            result.psnr = p.psnr;
+            result.drop = p.drop;
+        }
+    };
+
+    size_t unreduced_bytes = 0;
+    for (const ShChoice& choice : choices) {
+        std::map<size_t, size_t> sizes;  // by count: each file is written once
+        const auto bytes_of = [&](size_t kept) {
+            auto [entry, fresh] = sizes.try_emplace(kept, 0);
+            if (fresh) entry->second = scene_file_bytes(model_of(kept, choice), budget.format);
+            return entry->second;
+        };
+        const bool per_gaussian = choice.degree == cloud.sh_degree && choice.share > 0 && choice.share < 1;
+        if (choice.degree == cloud.sh_degree && choice.share == 0) {
+            unreduced_bytes = bytes_of(most);
+            if (unreduced_bytes <= budget.max_bytes) {  // everything fits: nothing to trade
+                probe(most, choice, unreduced_bytes);
+                break;
+            }
+        } else if (per_gaussian && bytes_of(most) >= unreduced_bytes) {
+            continue;  // the format does not store these zeros in fewer bytes
+        }
+        const size_t kept = largest_fitting(most, budget.max_bytes, bytes_of);
+        if (kept > 0) probe(kept, choice, bytes_of(kept));
+    }
+    result.keep = ranking.keep_best(result.kept);
+    return result;
+}
+
+}  // namespace vksplat::prune

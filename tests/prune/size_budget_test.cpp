@@ -1,0 +1,121 @@
+// The size budget: a bisection on the file's bytes, and the trade of count against SH bands.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "support/gpu_fixture.hpp"
+#include "support/scenes.hpp"
+#include "support/scratch_dir.hpp"
+#include "vksplat/error.hpp"
+#include "vksplat/io/formats.hpp"
+#include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/size_budget.hpp"
+
+namespace vksplat::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(LargestFitting, FindsTheLastCountThatFitsByBisection) {
+    size_t calls = 0;
+    const auto bytes_of = [&](size_t count) {
+        ++calls;
+        return 100 + 10 * count;
+    };
+    EXPECT_EQ(prune::largest_fitting(1000, 595, bytes_of), 49u);
+    EXPECT_LE(double(calls), 2 + std::ceil(std::log2(1000.0)));
+    EXPECT_EQ(prune::largest_fitting(1000, 600, bytes_of), 50u);
+    EXPECT_EQ(prune::largest_fitting(1000, 109, bytes_of), 0u) << "not even one";
+    EXPECT_EQ(prune::largest_fitting(1000, 110, bytes_of), 1u);
+    EXPECT_EQ(prune::largest_fitting(1000, 100000, bytes_of), 1000u);
+    EXPECT_EQ(prune::largest_fitting(0, 100000, bytes_of), 0u);
+}
+
+TEST(SceneFileBytes, AreTheBytesTheWriterWrites) {
+    const fs::path dir = fresh_test_dir("vksplat_size_budget_");
+    const GaussianCloud cloud = random_scene(91, 100, 3);
+    for (const std::string format : {"spz", "compressed-ply", "ply"}) {
+        const fs::path path = dir / ("scene." + format);
+        io::write_scene(cloud, path, io::WriteMode::refuse_existing, format);
+        EXPECT_EQ(prune::scene_file_bytes(cloud, format), fs::file_size(path)) << format;
+    }
+    fs::remove_all(dir);
+}
+
+class SizeBudget : public GpuTest {
+protected:
+    void SetUp() override {
+        renderer = std::make_unique<Renderer>(context());
+        views = eval::render_targets(*renderer, cloud, cameras, {});
+    }
+    prune::BudgetResult fit(size_t max_bytes, const std::string& format) {
+        prune::SizeBudget budget;
+        budget.max_bytes = max_bytes;
+        budget.format = format;
+        return prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
+    }
+    GaussianCloud cloud = random_scene(92, 400, 3);
+    std::vector<Camera> cameras = {forward_camera(64, 48, 60.0)};
+    std::vector<float> scores = prune::score(cloud, {}, prune::ScoreMethod::opacity);
+    prune::Ranking ranking{scores, prune::keep_all(cloud.size())};
+    std::unique_ptr<Renderer> renderer;
+    eval::TestViews views;
+};
+
+TEST_F(SizeBudget, KeepsTheBestModelThatFitsTradingCountAgainstBands) {
+    const size_t whole = prune::scene_file_bytes(cloud, "spz");
+    const prune::BudgetResult small = fit(whole / 3, "spz");
+    ASSERT_TRUE(small.model);
+    EXPECT_LE(prune::scene_file_bytes(*small.model, "spz"), whole / 3);
+    EXPECT_EQ(small.model->size(), small.kept);
+    EXPECT_EQ(prune::count_kept(small.keep), small.kept);
+    // Per-Gaussian bands, whole degrees and count all tried, each at the most Gaussians that fit.
+    EXPECT_EQ(small.probes.size(), 9u);
+    bool per_gaussian = false;
+    for (const auto& probe : small.probes) {
+        EXPECT_LE(probe.bytes, whole / 3);
+        EXPECT_GE(probe.drop, small.drop);
+        per_gaussian |= probe.sh_share > 0 && probe.sh_share < 1;
+    }
+    EXPECT_TRUE(per_gaussian);
+    EXPECT_GT(small.probes.back().kept, small.probes.front().kept) << "fewer bands, more Gaussians";
+
+    const prune::BudgetResult larger = fit(whole / 2, "spz");
+    EXPECT_LT(larger.drop, small.drop);
+    const prune::BudgetResult all = fit(whole, "spz");
+    EXPECT_EQ(all.probes.size(), 1u);
+    EXPECT_EQ(all.kept, cloud.size());
+    EXPECT_EQ(all.drop, 0.0);
+}
+
+TEST_F(SizeBudget, SkipsPerGaussianBandsWhereTheFormatStoresNoZerosCompactly) {
+    const size_t whole = prune::scene_file_bytes(cloud, "compressed-ply");
+    const prune::BudgetResult result = fit(whole / 2, "compressed-ply");
+    ASSERT_TRUE(result.model);
+    EXPECT_LE(prune::scene_file_bytes(*result.model, "compressed-ply"), whole / 2);
+    // Its SH bytes are fixed: zeros gain only where every Gaussian lost the band (degree below 3).
+    for (const auto& probe : result.probes) {
+        if (probe.sh_share > 0) {
+            EXPECT_LT(probe.sh_degree, 3) << "share " << probe.sh_share;
+        }
+    }
+    EXPECT_LT(result.probes.size(), 9u) << "a share too small to empty band 3 is skipped unmeasured";
+}
+
+TEST_F(SizeBudget, RefusesABudgetBelowTheSmallestModelNamingItsSize) {
+    GaussianCloud one = cloud.subset(ranking.keep_best(1)).with_sh_degree(0);
+    const size_t smallest = prune::scene_file_bytes(one, "spz");
+    EXPECT_EQ(fit(smallest, "spz").kept, 1u);
+    try {
+        fit(smallest - 1, "spz");
+        FAIL() << "a budget below one Gaussian must be refused";
+    } catch (const InputError& e) {
+        EXPECT_NE(std::string(e.what()).find("one Gaussian at SH degree 0, takes " + std::to_string(smallest) + " bytes"),
+                  std::string::npos)
+            << e.what();
+    }
+}
+
+}  // namespace
+}  // namespace vksplat::test
