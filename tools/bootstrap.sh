@@ -11,7 +11,7 @@ packages=(
   cmake g++ pkg-config
   libvulkan-dev mesa-vulkan-drivers glslang-tools libvulkan-volk-dev
   libglm-dev libeigen3-dev libopencv-dev libnanoflann-dev
-  libgtest-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev libglfw3-dev
+  libgtest-dev libcli11-dev nlohmann-json3-dev zlib1g-dev libzstd-dev libwebp-dev libglfw3-dev
 )
 # The test suite also drives headless Chromium to check that the HTML reports draw.
 [ "$mode" = test ] && packages+=(chromium)

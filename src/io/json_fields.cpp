@@ -6,6 +6,7 @@
 #include <fstream>
 #include <limits>
 #include <exception>
+#include <utility>
 
 #include "vksplat/error.hpp"
 
@@ -13,18 +14,30 @@ namespace vksplat::io::detail {
 
 using nlohmann::json;
 
+namespace {
+
+// nlohmann's own exceptions do not name the file.
+template <typename Input>
+json parse_or_refuse(Input&& input, const std::string& where) {
+    try {
+        return json::parse(std::forward<Input>(input));
+    } catch (const json::parse_error& error) {
+        throw InputError(where, std::string("malformed JSON: ") + error.what());
+    } catch (const json::exception& error) {
+        // A number beyond a double's range (1e400) is nlohmann's out_of_range, not a parse_error.
+        throw InputError(where, std::string("unreadable JSON: ") + error.what());
+    }
+}
+
+}  // namespace
+
 json read_json_file(const std::filesystem::path& path) {
     std::ifstream in(path);
     if (!in) throw InputError(path.string(), std::filesystem::exists(path) ? "cannot be opened" : "no such file");
-    try {
-        return json::parse(in);
-    } catch (const json::parse_error& error) {
-        throw InputError(path.string(), std::string("malformed JSON: ") + error.what());
-    } catch (const json::exception& error) {
-        // A number beyond a double's range (1e400) is nlohmann's out_of_range, not a parse_error.
-        throw InputError(path.string(), std::string("unreadable JSON: ") + error.what());
-    }
+    return parse_or_refuse(in, path.string());
 }
+
+json parse_json(std::string_view text, const std::string& where) { return parse_or_refuse(text, where); }
 
 const json& field(const json& object, const char* key, const std::string& at) {
     if (!object.is_object())

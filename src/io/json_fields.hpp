@@ -3,6 +3,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "vksplat/camera/camera.hpp"
@@ -11,6 +12,9 @@ namespace vksplat::io::detail {
 
 // The parsed file; throws InputError if it is missing or not valid JSON.
 nlohmann::json read_json_file(const std::filesystem::path& path);
+// The parsed text (a file's bytes from elsewhere, such as a zip); throws InputError naming `where`
+// if it is not valid JSON.
+nlohmann::json parse_json(std::string_view text, const std::string& where);
 
 // Each throws InputError(at, ...) if the key is missing or holds the wrong type.
 const nlohmann::json& field(const nlohmann::json& object, const char* key, const std::string& at);

@@ -3,6 +3,7 @@
 #include <cctype>
 #include <optional>
 
+#include "io/sog_layout.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/ply.hpp"
@@ -12,8 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kSupportedExtensions = ".ply, .splat, .spz, .pt, .pth";
-constexpr const char* kWritableExtensions = ".ply, .compressed.ply, .splat, .spz";
+constexpr const char* kSupportedExtensions = ".ply, .splat, .spz, .sog, meta.json (SOG), .pt, .pth";
+constexpr const char* kWritableExtensions = ".ply, .compressed.ply, .splat, .spz, .sog, meta.json (SOG)";
 
 std::string lowercase(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -33,6 +34,7 @@ std::optional<std::string> format_by_extension(const fs::path& path) {
         return lowercase(path.stem().extension().string()) == ".compressed" ? "compressed-ply" : "ply";
     if (extension == ".splat") return "splat";
     if (extension == ".spz") return "spz";
+    if (extension == ".sog" || detail::sog::is_meta_json(path)) return "sog";
     if (extension == ".pt" || extension == ".pth") return "gsplat-pt";
     return std::nullopt;
 }
@@ -60,7 +62,7 @@ std::string scene_format_named(const fs::path& path, const std::string& format) 
 }
 
 std::vector<std::string> scene_formats() {
-    return {"ply", "compressed-ply", "splat", "spz", "spz-v4", "gsplat-pt"};
+    return {"ply", "compressed-ply", "splat", "spz", "spz-v4", "sog", "gsplat-pt"};
 }
 
 std::string scene_format_of(const fs::path& path) {
@@ -78,12 +80,13 @@ GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, 
     if (name == "compressed-ply") return read_compressed_ply(path, notes);
     if (name == "splat") return read_splat(path, notes);
     if (name == "spz" || name == "spz-v4") return read_spz(path, notes);
+    if (name == "sog") return read_sog(path, notes);
     return read_gsplat_checkpoint(path, notes);
 }
 
 std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
     const std::string writable = std::string("; the scene formats vksplat writes are ") + kWritableExtensions +
-                                 " (or by name: ply, compressed-ply, splat, spz, spz-v4)";
+                                 " (or by name: ply, compressed-ply, splat, spz, spz-v4, sog)";
     if (format.empty()) {
         const auto named = format_by_extension(path);
         const std::string extension = path.extension().string();
@@ -96,7 +99,9 @@ std::string check_scene_writable(const fs::path& path, WriteMode mode, const std
     const std::string name = scene_format_named(path, format);
     if (!is_writable(name))
         throw InputError(path.string(), "cannot write format '" + name + "': it is read-only here" + writable);
-    check_writable(path, mode);
+    // A SOG folder's textures are outputs too.
+    for (const fs::path& file : name == "sog" ? detail::sog::output_files(path) : std::vector<fs::path>{path})
+        check_writable(file, mode);
     return name;
 }
 
@@ -105,6 +110,7 @@ void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mod
     if (name == "ply") return write_ply(cloud, path, mode);
     if (name == "compressed-ply") return write_compressed_ply(cloud, path, mode);
     if (name == "splat") return write_splat(cloud, path, mode);
+    if (name == "sog") return write_sog(cloud, path, mode);
     return write_spz(cloud, path, mode, name == "spz-v4" ? 4 : 3);
 }
 

@@ -73,8 +73,7 @@ void Archive::read_directory() {
     // The end-of-central-directory record: 22 bytes plus a comment of up to 65535 at the end.
     const uint64_t tail_size = std::min<uint64_t>(file_size_, 22 + 65535);
     if (file_size_ < 22)
-        throw InputError(where_, "not a PyTorch checkpoint: too short (" + std::to_string(file_size_) +
-                                     " bytes) to be a zip archive");
+        throw InputError(where_, "too short (" + std::to_string(file_size_) + " bytes) to be a zip archive");
     const std::string tail = bytes_at(file_size_ - tail_size, tail_size, where_);
     size_t eocd = std::string::npos;
     for (size_t i = tail_size - 22 + 1; i-- > 0;)
@@ -147,6 +146,55 @@ void Archive::read_directory() {
         entries_.push_back(std::move(entry));
         at += 46 + name_length + extra_length + comment_length;
     }
+}
+
+std::string stored_archive(const std::vector<std::pair<std::string, std::string>>& files, const std::string& where) {
+    constexpr uint16_t kVersion = 20;             // 2.0: the first with folders and deflate; enough for stored
+    constexpr uint16_t kDosDate = (0 << 9) | (1 << 5) | 1;  // 1980-01-01, the earliest a zip can say
+    constexpr uint64_t kLimit = 0xffffffff;      // beyond it, sizes and offsets need zip64
+    if (files.size() >= 0xffff)
+        throw InputError(where, std::to_string(files.size()) + " entries need zip64, which is not written");
+    std::string archive, directory;
+    for (const auto& [name, bytes] : files) {
+        const uint64_t offset = archive.size();
+        if (bytes.size() >= kLimit || offset >= kLimit || name.size() > 0xffff)
+            throw InputError(where + ": zip entry '" + name + "'", "is too large for a zip without zip64 (" +
+                                                                     std::to_string(bytes.size()) + " bytes)");
+        const uint32_t crc = detail::crc32_of(bytes);
+        // The fields the local header and the directory entry share, from "version needed" on.
+        std::string common;
+        for (const uint16_t field : {kVersion, uint16_t{0}, uint16_t{0}, uint16_t{0}, kDosDate})
+            detail::store_little_endian(common, field);  // version needed, flags, method (stored), time, date
+        for (const uint32_t field : {crc, uint32_t(bytes.size()), uint32_t(bytes.size())})
+            detail::store_little_endian(common, field);  // CRC, compressed and uncompressed sizes
+        detail::store_little_endian(common, uint16_t(name.size()));
+        detail::store_little_endian(common, uint16_t{0});  // extra field length
+
+        detail::store_little_endian(archive, uint32_t{0x04034b50});
+        archive += common;
+        archive += name;
+        archive += bytes;
+
+        detail::store_little_endian(directory, uint32_t{0x02014b50});
+        detail::store_little_endian(directory, kVersion);  // version made by (MS-DOS attributes)
+        directory += common;
+        for (const uint16_t field : {uint16_t{0}, uint16_t{0}, uint16_t{0}})
+            detail::store_little_endian(directory, field);  // comment length, disk, internal attributes
+        detail::store_little_endian(directory, uint32_t{0});  // external attributes
+        detail::store_little_endian(directory, uint32_t(offset));
+        directory += name;
+    }
+    const uint64_t directory_offset = archive.size();
+    if (directory_offset + directory.size() >= kLimit)
+        throw InputError(where, "is too large for a zip without zip64 (" + std::to_string(directory_offset) + " bytes)");
+    archive += directory;
+    detail::store_little_endian(archive, uint32_t{0x06054b50});
+    for (const uint16_t field : {uint16_t{0}, uint16_t{0}, uint16_t(files.size()), uint16_t(files.size())})
+        detail::store_little_endian(archive, field);  // this disk, the directory's disk, entries here, in all
+    detail::store_little_endian(archive, uint32_t(directory.size()));
+    detail::store_little_endian(archive, uint32_t(directory_offset));
+    detail::store_little_endian(archive, uint16_t{0});  // comment length
+    return archive;
 }
 
 }  // namespace vksplat::io::zip

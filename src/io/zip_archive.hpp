@@ -1,11 +1,13 @@
 #pragma once
-// Zip archives, read as torch.save writes them (its only user here is the gsplat checkpoint reader):
-// the central directory (zip64 sizes and offsets included), stored and deflated entries, each
-// checked against its CRC. Entries are read on demand, so a large archive costs only what is asked.
+// Zip archives: read as torch.save and splat-transform write them (for the gsplat checkpoint and
+// SOG readers): the central directory (zip64 sizes and offsets included), stored and deflated
+// entries, each checked against its CRC. Entries are read on demand, so a large archive costs only
+// what is asked. Written with every entry stored (for SOG, whose WebP textures are compressed already).
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace vksplat::io::zip {
@@ -39,5 +41,10 @@ private:
     uint64_t file_size_ = 0;
     std::vector<Entry> entries_;
 };
+
+// A zip archive of `files` (name, bytes) in the order given, each stored uncompressed, dated
+// 1980-01-01 so that the same files make the same archive. Throws InputError naming `where` if
+// the archive would need zip64 (an entry, or the whole, of 4 GiB or more; 65535 entries or more).
+std::string stored_archive(const std::vector<std::pair<std::string, std::string>>& files, const std::string& where);
 
 }  // namespace vksplat::io::zip

@@ -1,17 +1,19 @@
 #!/usr/bin/env python3
-"""The scene and the comparison for tests/io/splat_transform_test.sh, which checks our .splat, .spz
-and compressed .ply writers (and our .spz reader) against an independent implementation, PlayCanvas
-splat-transform.
+"""The scene and the comparison for tests/io/splat_transform_test.sh, which checks our .splat, .spz,
+compressed .ply and .sog writers (and our .spz and .sog readers) against an independent
+implementation, PlayCanvas splat-transform.
 
-  splat_transform_compare.py scene OUT.ply
+  splat_transform_compare.py scene OUT.ply [--sh-vectors K]
       writes a float INRIA PLY of 300 Gaussians, SH degree 3, whose values lie where every format
-      can hold them (see the ranges below), with unnormalised quaternions of both signs.
+      can hold them (see the ranges below), with unnormalised quaternions of both signs. With
+      --sh-vectors, the Gaussians' higher SH are drawn from K vectors only, so that a SOG writer's
+      palette (k-means) can hold each exactly, and what is compared is its codebook's rounding.
   splat_transform_compare.py compare CASE ORIGINAL.ply DECODED.ply
       compares what a decoder made of an encoded ORIGINAL, attribute by attribute, Gaussian by
       Gaussian, against CASE's tolerances; prints the largest error of each attribute; exits 1 if
-      any exceeds its tolerance. Gaussians are paired in file order, except for the compressed PLY,
-      whose writer reorders them (Morton order): there each decoded Gaussian is paired with the
-      original nearest to it, and every original must be paired once.
+      any exceeds its tolerance. Gaussians are paired in file order, except for the compressed PLY
+      and SOG, whose writers reorder them (Morton order): there each decoded Gaussian is paired
+      with the original nearest to it, and every original must be paired once.
 
 Plain float PLY is exact both ways, so each comparison measures one encoder and one decoder.
 Standard library only.
@@ -59,15 +61,39 @@ TOLERANCES = {
     # SH a byte over [-4, 4]: half of 8/256 = 0.0157.
     "compressed_ply": {"position": 0.0079, "log_scale": 0.0035, "f_dc": 0.0067, "opacity": 0.0020, "rotation": 0.0021,
                        "sh_degree_1": 0.0157, "sh_degree_2_3": 0.0157},
+    # Ours -> .sog -> splat-transform. Positions log-encoded, v = sign(x) ln(|x| + 1), in 16 bits over
+    # each axis's range (2 ln 9 = 4.39 for +-8): half a step, 4.39/65535/2 = 3.35e-5 in v, is
+    # (|x| + 1) times that in x: 9 * 3.35e-5 = 3.0e-4. Log scales and f_dc: each the nearest entry of
+    # a 256-entry codebook (k-means over the scene's 900 values of each), so within half the widest
+    # gap between entries, which k-means leaves where values are sparse: measured 0.0263 and 0.0111
+    # (entries spread evenly would give 7/255/2 = 0.0137 and 3.4/255/2 = 0.0067). Opacity after the
+    # sigmoid a byte (0.00196). Rotations "smallest three" times sqrt(2) in 8 bits: half a step is
+    # 2/255/sqrt(2)/2 = 0.0028 for each smaller one, the largest within 3x that (0.0084). Higher SH:
+    # 300 Gaussians fit the palette (4096 entries) one entry each, so what is left is the codebook of
+    # 256 over the 13,500 values in [-0.95, 0.95]: measured 0.0051 (evenly: 1.9/255/2 = 0.0037).
+    "sog": {"position": 3.1e-4, "log_scale": 0.0270, "f_dc": 0.0120, "opacity": 0.0020, "rotation": 0.0084,
+            "sh_degree_1": 0.0055, "sh_degree_2_3": 0.0055},
+    # splat-transform -> .sog -> ours, the scene's higher SH drawn from 16 vectors (--sh-vectors 16),
+    # which its palette of 256 (k-means from random seeds) holds one each. It truncates where we
+    # round: a whole step of position (6.0e-4; measured 5.8e-4), opacity (1/255 = 0.0039) and
+    # rotation (0.0056, the largest within 3x: 0.0167). Its codebooks (quantize1d, a dynamic
+    # programme over a histogram) measured: log scales 0.0134, f_dc 0.0064, SH 0.0030 to 0.0043
+    # over runs (its seeds are random, and so its palette's values).
+    "sog_theirs": {"position": 6.1e-4, "log_scale": 0.0140, "f_dc": 0.0070, "opacity": 0.0040, "rotation": 0.0167,
+                   "sh_degree_1": 0.0060, "sh_degree_2_3": 0.0060},
 }
+# The cases whose writer reorders the Gaussians.
+REORDERED = {"compressed_ply", "sog", "sog_theirs"}
 
 
-def scene(path, count=300, seed=7):
+def scene(path, count=300, seed=7, sh_vectors=0):
     """Values inside every format's range: positions within +-8 (12 fractional bits of SPZ's 24),
     log scales in [-6, 1] (SPZ holds [-10, 5.9]), colours 0.5 + SH_C0 * f_dc in [0.02, 0.98]
     (a .splat byte holds [0, 1]), opacity logits in [-4.5, 4.5] (away from bytes 0 and 255, which
-    splat-transform and we map to different finite logits), SH in [-0.95, 0.95] (SPZ holds [-1, 1))."""
+    splat-transform and we map to different finite logits), SH in [-0.95, 0.95] (SPZ holds [-1, 1)),
+    from `sh_vectors` vectors when that is not 0."""
     rng = random.Random(seed)
+    palette = [[rng.uniform(-0.95, 0.95) for _ in range(SH_REST)] for _ in range(sh_vectors)]
     names = ["x", "y", "z", "nx", "ny", "nz", "f_dc_0", "f_dc_1", "f_dc_2"]
     names += [f"f_rest_{i}" for i in range(SH_REST)]
     names += ["opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"]
@@ -75,7 +101,7 @@ def scene(path, count=300, seed=7):
     for _ in range(count):
         row = [rng.uniform(-8, 8) for _ in range(3)] + [0.0, 0.0, 0.0]
         row += [rng.uniform(-0.48, 0.48) / SH_C0 for _ in range(3)]
-        row += [rng.uniform(-0.95, 0.95) for _ in range(SH_REST)]
+        row += rng.choice(palette) if palette else [rng.uniform(-0.95, 0.95) for _ in range(SH_REST)]
         row += [rng.uniform(-4.5, 4.5)] + [rng.uniform(-6, 1) for _ in range(3)]
         quaternion = [rng.gauss(0, 1) for _ in range(4)]
         length = rng.uniform(0.5, 2) / math.sqrt(sum(q * q for q in quaternion))
@@ -141,7 +167,7 @@ def compare(case, original_path, decoded_path):
     decoded, decoded_count = read_ply(decoded_path)
     if decoded_count != count:
         sys.exit(f"{case}: {decoded_path} holds {decoded_count} Gaussians, {original_path} {count}")
-    if case == "compressed_ply":
+    if case in REORDERED:
         pairs = nearest_original(original, decoded, count)
         reordered = {}
         for name, values in decoded.items():
@@ -190,6 +216,9 @@ def compare(case, original_path, decoded_path):
 def main():
     if len(sys.argv) == 3 and sys.argv[1] == "scene":
         scene(sys.argv[2])
+        return 0
+    if len(sys.argv) == 5 and sys.argv[1] == "scene" and sys.argv[3] == "--sh-vectors":
+        scene(sys.argv[2], sh_vectors=int(sys.argv[4]))
         return 0
     if len(sys.argv) == 5 and sys.argv[1] == "compare" and sys.argv[2] in TOLERANCES:
         return compare(*sys.argv[2:])
