@@ -1,16 +1,19 @@
 #include "vksplat/report/comparison_sheet.hpp"
 
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
 #include <array>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
 #include <string>
 
+#include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
 
 namespace vksplat::report {
@@ -150,10 +153,31 @@ io::ImageRGB compose_comparison_sheet(const std::vector<SheetPanel>& panels) {
     return out;
 }
 
-void write_comparison_sheet(const std::filesystem::path& png, const std::vector<SheetPanel>& panels,
+void write_comparison_sheet(const std::filesystem::path& path, const std::vector<SheetPanel>& panels,
                             io::WriteMode mode) {
+    std::string extension = path.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".png" && extension != ".jpg" && extension != ".jpeg")
+        throw InputError(path.string(), "a comparison sheet is written as .png, .jpg or .jpeg, not '" + extension + "'");
     const io::ImageRGB sheet = compose_comparison_sheet(panels);
-    io::write_png_rgb(png, sheet.width, sheet.height, sheet.rgb.data(), 8, mode);
+    if (extension == ".png") {
+        io::write_png_rgb(path, sheet.width, sheet.height, sheet.rgb.data(), 8, mode);
+        return;
+    }
+    cv::Mat bgr(sheet.height, sheet.width, CV_8UC3);
+    for (int y = 0; y < sheet.height; ++y) {
+        auto* row = bgr.ptr<uint8_t>(y);
+        const float* src = sheet.rgb.data() + static_cast<size_t>(y) * sheet.width * 3;
+        for (int x = 0; x < sheet.width; ++x)
+            for (int c = 0; c < 3; ++c) row[x * 3 + c] = to_byte(src[x * 3 + 2 - c]);
+    }
+    std::vector<uchar> bytes;
+    if (!cv::imencode(".jpg", bgr, bytes, {cv::IMWRITE_JPEG_QUALITY, kJpegQuality}))
+        throw InputError(path.string(), "JPEG encoding failed");
+    io::write_file_atomically(path, mode, [&](std::ostream& out) {
+        out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+    });
 }
 
 int heat_bar_width(int h, float max_error) { return bar_layout(h, max_error).width; }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "sweep_parts.hpp"
+#include "vksplat/report/comparison_sheet.hpp"
 
 namespace vksplat::sweep::detail {
 namespace {
@@ -114,9 +115,13 @@ void add_sheets(report::HtmlReport& report, const SweepResult& result, const Swe
     }
     report.add_paragraph("For the best method, " + best +
                          " (highest PSNR against the photos averaged over the fractions above 0), at each of the "
-                         "fractions below, every test view: photo | unpruned | pruned | error of the pruned render "
-                         "against the unpruned one (mean absolute error over the channels, colour bar from 0 to " +
-                         format("%g", options.sheet_max_error) + ").");
+                         "fractions below, every test view: photo | unpruned | pruned, each render with its PSNR "
+                         "against the photo | error of the pruned render against the unpruned one (mean absolute "
+                         "error over the channels, colour bar from 0 to " +
+                         format("%g", options.sheet_max_error) +
+                         "), with its PSNR | the square where that error is largest (outlined in cyan on the "
+                         "renders), enlarged: unpruned above, pruned below. Sheets are JPEG (quality " +
+                         std::to_string(report::kJpegQuality) + ").");
     const size_t views = result.test_view_names.size();
     for (size_t f = 0; f < result.sheet_fractions.size(); ++f) {
         report.add_heading(best + ", " + fraction_label(result.sheet_fractions[f]) + " dropped");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -200,6 +201,82 @@ TEST(WriteComparisonSheet, WritesThePngAndRefusesToReplaceItUnlessAsked) {
     EXPECT_NO_THROW(write_comparison_sheet(png, {panels[0]}, io::WriteMode::overwrite));
     EXPECT_EQ(io::read_image_rgb(png, {0, 0, 0}).width, 64);
     std::filesystem::remove_all(dir);
+}
+
+// JPEG by the name, a tenth of the PNG's weight for a picture like a render, decoded close to what
+// was composed; any other extension is refused before anything is written.
+TEST(WriteComparisonSheet, WritesJpegWhenTheNameSaysSo) {
+    const auto dir = std::filesystem::temp_directory_path() / ("vksplat_sheet_jpeg_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    // A smooth picture with noise, as renders of a scene are.
+    const int w = 256, h = 192;
+    std::vector<float> render(static_cast<size_t>(w) * h * 3);
+    uint32_t state = 1;
+    for (size_t i = 0; i < render.size(); ++i) {
+        state = state * 1664525u + 1013904223u;
+        const size_t p = i / 3;
+        render[i] = 0.5f + 0.3f * std::sin(float(p % w) * 0.05f + float(i % 3)) * std::cos(float(p / w) * 0.04f) +
+                    0.02f * float(state >> 24) / 255.0f;
+    }
+    const std::vector<SheetPanel> panels = {{"photo", w, h, render}, {"render", w, h, render}};
+    write_comparison_sheet(dir / "sheet.jpg", panels, io::WriteMode::refuse_existing);
+    write_comparison_sheet(dir / "sheet.JPEG", panels, io::WriteMode::refuse_existing);
+    write_comparison_sheet(dir / "sheet.png", panels, io::WriteMode::refuse_existing);
+    std::ifstream jpeg(dir / "sheet.jpg", std::ios::binary);
+    EXPECT_EQ(jpeg.get(), 0xFF);
+    EXPECT_EQ(jpeg.get(), 0xD8);
+    EXPECT_LT(std::filesystem::file_size(dir / "sheet.jpg"), std::filesystem::file_size(dir / "sheet.png") / 4);
+    const io::ImageRGB read = io::read_image_rgb(dir / "sheet.jpg", {0, 0, 0});
+    const io::ImageRGB composed = compose_comparison_sheet(panels);
+    ASSERT_EQ(read.rgb.size(), composed.rgb.size());
+    const int strip = caption_strip_height(panels);
+    double error = 0;
+    for (size_t i = static_cast<size_t>(strip + 8) * read.width * 3; i < read.rgb.size(); ++i)
+        error += std::abs(read.rgb[i] - composed.rgb[i]);
+    EXPECT_LT(error / double(read.rgb.size()), 0.02) << "mean error of the pictures";
+    EXPECT_THROW(write_comparison_sheet(dir / "sheet.bmp", panels, io::WriteMode::overwrite), InputError);
+    EXPECT_FALSE(std::filesystem::exists(dir / "sheet.bmp"));
+    std::filesystem::remove_all(dir);
+}
+
+TEST(ErrorWindow, FindsWhereTwoPicturesDifferMost) {
+    const int w = 64, h = 48;
+    std::vector<float> a(static_cast<size_t>(w) * h * 3, 0.5f), b = a;
+    for (int y = 30; y < 36; ++y)  // a 6 x 6 patch far off, and a fainter one elsewhere
+        for (int x = 40; x < 46; ++x)
+            for (int c = 0; c < 3; ++c) b[(static_cast<size_t>(y) * w + x) * 3 + c] = 1.0f;
+    for (int c = 0; c < 3; ++c) b[(static_cast<size_t>(5) * w + 5) * 3 + c] = 0.6f;
+    const ErrorWindow window = largest_error_window(a.data(), b.data(), w, h, 8);
+    EXPECT_EQ(window.size, 8);
+    EXPECT_LE(window.x, 40);
+    EXPECT_GE(window.x + 8, 46);
+    EXPECT_LE(window.y, 30);
+    EXPECT_GE(window.y + 8, 36);
+    EXPECT_NEAR(window.mean_error, 36 * 0.5 / 64, 1e-6);
+    EXPECT_EQ(largest_error_window(a.data(), b.data(), w, h, 100).size, h) << "at most the image";
+    EXPECT_EQ(largest_error_window(a.data(), a.data(), w, h, 8).mean_error, 0.0);
+    EXPECT_THROW(largest_error_window(a.data(), b.data(), w, h, 0), std::invalid_argument);
+}
+
+TEST(ErrorWindow, ZoomsBothPicturesOfTheWindowAndOutlinesIt) {
+    const int w = 40, h = 30;
+    const std::vector<float> a = solid("a", w, h, {1, 0, 0}).rgb, b = solid("b", w, h, {0, 0, 1}).rgb;
+    const ErrorWindow window{10, 5, 6, 0.0};
+    const SheetPanel zoom = zoomed_window_panel(a.data(), b.data(), w, h, window, "zoom");
+    EXPECT_EQ(zoom.width, h / 2);
+    EXPECT_EQ(zoom.height, h);
+    EXPECT_EQ(pixel(zoom, 3, 2), (Rgb{1, 0, 0})) << "a above";
+    EXPECT_EQ(pixel(zoom, 3, h - 2), (Rgb{0, 0, 1})) << "b below";
+    EXPECT_EQ(pixel(zoom, 3, h / 2), kWhite) << "a white line between";
+    EXPECT_THROW(zoomed_window_panel(a.data(), b.data(), w, h, {36, 5, 6, 0.0}, ""), std::invalid_argument);
+
+    SheetPanel panel = solid("p", w, h, {0, 0, 0});
+    outline_window(panel, window, {0, 1, 1});
+    EXPECT_EQ(pixel(panel, 10, 5), (Rgb{0, 1, 1}));
+    EXPECT_EQ(pixel(panel, 15, 10), (Rgb{0, 1, 1}));
+    EXPECT_EQ(pixel(panel, 13, 8), (Rgb{0, 0, 0})) << "inside stays";
+    EXPECT_EQ(pixel(panel, 9, 5), (Rgb{0, 0, 0})) << "outside stays";
 }
 
 }  // namespace

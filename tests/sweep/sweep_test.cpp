@@ -217,10 +217,12 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     // Sheets: every test view for the best method at 0.5, 0.8 and 0.9, four panels wide.
     EXPECT_EQ(result.sheet_fractions, (std::vector<double>{0.5, 0.8, 0.9}));
     ASSERT_EQ(result.sheets.size(), 3 * cameras.size());
+    // photo | unpruned | pruned | error with its colour bar | the largest error zoomed (half as wide), as JPEG.
     const io::ImageRGB sheet = io::read_image_rgb(out / result.sheets.front(), {1, 1, 1});
-    EXPECT_EQ(sheet.width, 3 * 48 + 48 + report::heat_bar_width(40, 0.1f));
+    EXPECT_EQ(sheet.width, 3 * 48 + 48 + report::heat_bar_width(40, 0.1f) + 40 / 2);
     const std::string& best = result.best_method;
-    EXPECT_EQ(result.sheets.front(), fs::path("sheets") / ("view_0_" + best + "_0.5.png"));
+    EXPECT_EQ(result.sheets.front(), fs::path("sheets") / ("view_0_" + best + "_0.5.jpg"));
+    EXPECT_EQ(read_text(out / result.sheets.front()).substr(0, 2), "\xFF\xD8");
 
     // The report shows every chart and sheet by a relative path that exists, and names the best method.
     const std::string html = read_text(result.report);
