@@ -91,7 +91,8 @@ uint8_t level(float value) { return uint8_t(std::lround(std::fmin(std::fmax(valu
 
 TEST_F(CApiTest, RendersWhatTheCppApiRendersByteForByte) {
     const auto path = scene_file(random_scene(7, 400, 3));
-    const Camera camera = forward_camera(72, 56, 60.0);
+    // Off the axis and turned, so that a rotation read transposed would show.
+    const Camera camera = Camera::look_at({1.0, -0.6, 0.0}, {0.0, 0.0, 5.0}, {0.1, -1.0, 0.0}, 72, 56, 60.0, 60.0);
     RenderSettings cpp_settings;
     cpp_settings.background = {0.1f, 0.3f, 0.5f};
     cpp_settings.max_sh_degree = 2;
