@@ -26,9 +26,10 @@ using detail::RgbaImage;
 using nlohmann::ordered_json;
 
 // The SH palette: splat-transform fits up to 64Ki entries (half to all of the splats) on a GPU;
-// on a CPU, k-means costs splats x entries x 45 per step. 4096 entries, fitted to 16 splats an
-// entry and 5 steps from k-means++ seeds, keep a scene of 60,000 splats (snowmiku) to about
-// 20 s on 2 cores, labelling every splat with its nearest entry at the end.
+// on a CPU, k-means costs splats x entries x 45 per step. 4096 entries, fitted to at most 16
+// splats an entry (every splat of snowmiku's 57,694) in 5 steps from k-means++ seeds, then every
+// splat labelled with its nearest entry: 38 s of CPU time for snowmiku. Fitted to 8 splats an
+// entry, the palette's error grew by a fifth (mean squared 0.063 against 0.052) in 40% of the time.
 constexpr size_t kPaletteEntries = 4096;
 constexpr size_t kPaletteFitRowsPerEntry = 16;
 constexpr int kPaletteIterations = 5;

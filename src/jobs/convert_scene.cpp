@@ -35,6 +35,10 @@ ConvertResult convert_scene(const fs::path& input, const fs::path& output, const
     if (result.output_format == "spz" || result.output_format == "spz-v4")
         result.notes.push_back("spz stores every value in fixed point: positions, colours, scales, rotations "
                                "and SH are rounded");
+    if (result.output_format == "sog")
+        result.notes.push_back("sog rounds positions (16 bits) and rotations (8 bits), takes scales and colours from "
+                               "codebooks of 256 and the higher SH from a palette of at most 4096 (k-means), and "
+                               "orders the splats along a Morton curve");
     if (result.output_format == "compressed-ply")
         result.notes.push_back("compressed-ply rounds every value within its chunk of 256 splats (and SH to 8 bits) "
                                "and orders the splats along a Morton curve");

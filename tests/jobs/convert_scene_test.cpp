@@ -1,5 +1,5 @@
 // convert_scene: a generated scene goes through every writable format and back, and the picture
-// it makes stays the same (exactly for ply, within each format's rounding for spz and splat);
+// it makes stays the same (exactly for ply, within each format's rounding for spz, splat and sog);
 // mistakes are refused before anything is read or written.
 #include <gtest/gtest.h>
 
@@ -38,7 +38,8 @@ TEST(ConvertScene, EveryWritableFormatRoundTripsToTheSamePicture) {
         const char* file;
         double min_psnr;  // of the render after ply -> format -> ply against the original's
     };
-    for (const Case c : {Case{"scene.ply", 1e9}, Case{"scene.splat", 45.0}, Case{"scene.spz", 45.0}}) {
+    for (const Case c :
+         {Case{"scene.ply", 1e9}, Case{"scene.splat", 45.0}, Case{"scene.spz", 45.0}, Case{"scene.sog", 45.0}}) {
         SCOPED_TRACE(c.file);
         const std::string there = std::string("to_") + c.file;
         const std::string back = there + ".ply";
@@ -65,6 +66,15 @@ TEST(ConvertScene, SplatSaysItDropsShBands) {
     EXPECT_EQ(result.output_sh_degree, 0);
     ASSERT_FALSE(result.notes.empty());
     EXPECT_NE(result.notes.back().find("SH degree 2 reduced to 0"), std::string::npos) << result.notes.back();
+}
+
+TEST(ConvertScene, SogSaysWhatItRounds) {
+    ScratchDir dir;
+    io::write_scene(test::random_scene(3, 5, 2), dir / "scene.ply");
+    const ConvertResult result = convert_scene(dir / "scene.ply", dir / "scene.sog");
+    EXPECT_EQ(result.output_sh_degree, 2);
+    ASSERT_FALSE(result.notes.empty());
+    EXPECT_NE(result.notes.back().find("palette of at most 4096"), std::string::npos) << result.notes.back();
 }
 
 TEST(ConvertScene, NamedFormatsOverrideExtensions) {

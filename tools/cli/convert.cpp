@@ -32,11 +32,13 @@ int run_convert(const ConvertArgs& args) {
 void register_convert(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("convert", "rewrite a scene file in another format");
     command->footer(
-        "Formats: ply (INRIA 3DGS), compressed-ply (PlayCanvas, *.compressed.ply), splat (antimatter15) and\n"
-        "spz (Niantic; written as version 3, or 4 with --format spz-v4) are read and written; gsplat-pt\n"
+        "Formats: ply (INRIA 3DGS), compressed-ply (PlayCanvas, *.compressed.ply), splat (antimatter15),\n"
+        "spz (Niantic; written as version 3, or 4 with --format spz-v4) and sog (PlayCanvas SOG: a .sog zip,\n"
+        "or a folder's meta.json beside its WebP textures) are read and written; gsplat-pt\n"
         "(gsplat checkpoint) is read only. The extension picks the format unless --format (output) or\n"
         "--input-format names it; a .ply is read as its header says.\n"
         "Example:\n  vksplat convert point_cloud.ply scene.spz\n  vksplat convert point_cloud.ply scene.compressed.ply\n"
+        "  vksplat convert point_cloud.ply scene.sog\n"
         "  vksplat convert ckpt_29999.pt scene.ply --force");
     auto args = std::make_shared<ConvertArgs>();
     std::string formats;

@@ -87,8 +87,10 @@ GaussianCloud read_sog(const std::filesystem::path& path, std::vector<std::strin
 // Writes a .sog zip (entries stored: WebP is compressed already), or, for a path named meta.json,
 // meta.json and its textures into that folder (every file checked for `mode` before any is
 // written). Splats in Morton order; codebooks by k-means (OpenCV). The SH palette holds at most
-// 4096 entries (splat-transform fits up to 65536 on a GPU): snowmiku's 57,694 splats take about
-// 30 s on 2 cores. Throws InputError for non-finite values or a quaternion of length 0.
+// 4096 entries, where splat-transform fits up to 65536 on a GPU: snowmiku's 57,694 splats take
+// 38 s of CPU time, and its renders lose 0.97 dB PSNR against the photos (28.51 -> 27.54 dB, of
+// which 0.85 the palette; SH degree 0 alone would lose 4.7 dB). Throws InputError for non-finite
+// values or a quaternion of length 0.
 void write_sog(const GaussianCloud& cloud, const std::filesystem::path& path,
                WriteMode mode = WriteMode::refuse_existing);
 
