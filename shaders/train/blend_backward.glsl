@@ -1,10 +1,11 @@
-#ifndef FLOAT_ATOMICS
-#error define FLOAT_ATOMICS before including blend_backward.glsl
+#if !defined(FLOAT_ATOMICS) || !defined(FIXED_POINT_SUMS)
+#error define FLOAT_ATOMICS and FIXED_POINT_SUMS before including blend_backward.glsl
 #endif
 // The blend's backward pass, included after its push constants `pc` (BlendBackwardPush,
 // shaders/train/differentiable_renderer.h) by blend_backward.comp (FLOAT_ATOMICS 1: the device adds
-// floats atomically) and blend_backward_cas.comp (0: a compare-and-swap loop, for devices without
-// VK_EXT_shader_atomic_float; the same sums, slower, and in either case their order varies).
+// floats atomically), blend_backward_cas.comp (0: a compare-and-swap loop, for devices without
+// VK_EXT_shader_atomic_float; the same sums, slower, and in either case their order varies) and
+// blend_backward_fixed.comp (FIXED_POINT_SUMS 1: 64-bit integer sums, the same in any order).
 //
 // One workgroup per tile, one thread per pixel, the pixels in blend_body.glsl's order. Each pixel
 // replays the splats it walked (list positions below its `last`) back to front, recovering the
@@ -38,7 +39,9 @@ const uint BATCH = 256;
 
 void add_gradient(uint index, float value) {
     if (value == 0.0) return;
-#if FLOAT_ATOMICS
+#if FIXED_POINT_SUMS
+    atomicAdd(Int64s(pc.splat_grads).v[index], int64_t(round(value * SPLAT_GRAD_FIXED_SCALE)));
+#elif FLOAT_ATOMICS
     atomicAdd(pc.splat_grads.v[index], value);
 #else
     Uints bits = Uints(pc.splat_grads);

@@ -2,6 +2,7 @@
 // Blend backward for devices without float atomics. See shaders/train/blend_backward.glsl.
 #extension GL_GOOGLE_include_directive : require
 #define FLOAT_ATOMICS 0
+#define FIXED_POINT_SUMS 0
 #include "shaders/train/differentiable_renderer.h"
 layout(push_constant) uniform Push { BlendBackwardPush pc; };
 #include "shaders/train/blend_backward.glsl"

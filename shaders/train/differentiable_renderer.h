@@ -1,7 +1,8 @@
 // The training passes of a view, recorded by src/train/differentiable_renderer.cpp
 // (DifferentiableRenderer): train_activate.comp, then the render passes and blend_train.comp
 // (whose push is render's BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
-// blend_backward_cas.comp) and preprocess_backward.comp.
+// blend_backward_cas.comp, or blend_backward_fixed.comp and splat_grads_from_fixed.comp) and
+// preprocess_backward.comp.
 #ifndef VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 #define VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 
@@ -28,7 +29,8 @@ struct TrainActivatePush {
     uint count;
 };
 
-// blend_backward.comp, blend_backward_cas.comp: one workgroup per tile.
+// blend_backward.comp, blend_backward_cas.comp, blend_backward_fixed.comp (whose splat_grads
+// holds Int64s): one workgroup per tile.
 struct BlendBackwardPush {
     CameraBuffer camera;
     UVec2s ranges;
@@ -40,6 +42,29 @@ struct BlendBackwardPush {
     Vec4s pixel_grad;      // per pixel: dL / d rgb
     Floats splat_grads;    // out, accumulated: SPLAT_GRAD_STRIDE per Gaussian
 };
+
+// Deterministic sums (--deterministic): blend_backward_fixed.comp adds each splat's gradients as
+// 64-bit integers, SPLAT_GRAD_FIXED_SCALE units per 1.0 (2^40: steps of 9.1e-13, totals within
+// +-8.4e6), because integer addition gives the same total in any order where float addition does
+// not; splat_grads_from_fixed.comp then turns the totals into splat_grads' floats. 64-bit integer
+// types exist in GLSL only with their extension, so only these two shaders declare them.
+SHADER_CONST(float, SPLAT_GRAD_FIXED_SCALE, 1099511627776.0)
+#ifdef __cplusplus
+BUFFER_REFERENCE(Int64s, std::int64_t, 8)
+#elif FIXED_POINT_SUMS
+#extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
+#extension GL_EXT_shader_atomic_int64 : require
+layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64s { int64_t v[]; };
+#endif
+
+#if defined(__cplusplus) || FIXED_POINT_SUMS
+// splat_grads_from_fixed.comp: one thread per float, 256 per workgroup.
+struct SplatGradsFromFixedPush {
+    Int64s totals;         // SPLAT_GRAD_STRIDE totals per Gaussian (blend_backward_fixed.comp)
+    Floats splat_grads;    // out
+    uint count;            // floats
+};
+#endif
 
 // preprocess_backward.comp: one thread per Gaussian, 256 per workgroup.
 struct PreprocessBackwardPush {

@@ -277,6 +277,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     if (resumed) notice(resume_notice(*resumed, recipe.iterations));
     train_options.scene_extent = result.scene_extent;
     train_options.background = options.background;
+    train_options.deterministic = options.deterministic;
     train_options.position_schedule = train::PositionSchedule::decay;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
@@ -335,6 +336,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"test_ssim", measured(result.test.mean_ssim)},
                            {"test_psnr_per_view", result.test.psnr},
                            {"strategy", result.strategy},
+                           {"deterministic", options.deterministic},
                            {"pruned_by_importance", result.budget_events.pruned},
                            {"importance_seconds", result.budget_events.importance_seconds},
                            {"evaluate_seconds", result.evaluate_seconds},

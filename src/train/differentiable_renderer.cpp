@@ -7,6 +7,8 @@
 #include "render/entry_growth.hpp"
 #include "shaders/train/blend_backward.kernel.hpp"
 #include "shaders/train/blend_backward_cas.kernel.hpp"
+#include "shaders/train/blend_backward_fixed.kernel.hpp"
+#include "shaders/train/splat_grads_from_fixed.kernel.hpp"
 #include "shaders/train/blend_train.kernel.hpp"
 #include "shaders/train/preprocess_backward.kernel.hpp"
 #include "shaders/train/train_activate.kernel.hpp"
@@ -15,7 +17,7 @@
 namespace vksplat::train {
 
 using namespace shader::train;
-DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, bool compare_and_swap)
+DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSums sums)
     : context_(c),
       binning_(c),
       activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
@@ -26,10 +28,17 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, bool compa
       readback_(c, (render::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::readback,
                 "training step readback") {
     std::memset(readback_.mapped(), 0, readback_.size());
-    if (c.info().float_atomics && !compare_and_swap)
+    if (sums == GradientSums::fixed_point) {
+        if (!c.info().int64_atomics)
+            throw InputError("--deterministic", c.info().name + " has no 64-bit buffer atomics, which its "
+                                                "order-independent gradient sums need");
+        blend_backward_fixed_ = std::make_unique<gpu::Kernel<BlendBackwardFixedKernel>>(c);
+        from_fixed_ = std::make_unique<gpu::Kernel<SplatGradsFromFixedKernel>>(c);
+    } else if (c.info().float_atomics && sums == GradientSums::device_default) {
         blend_backward_ = std::make_unique<gpu::Kernel<BlendBackwardKernel>>(c);
-    else
+    } else {
         blend_backward_cas_ = std::make_unique<gpu::Kernel<BlendBackwardCasKernel>>(c);
+    }
 }
 
 DifferentiableRenderer::~DifferentiableRenderer() = default;
@@ -45,6 +54,11 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         splat_grads_ = gpu::Buffer();
         splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * 4, gpu::MemoryKind::device,
                                    "per-splat gradients");
+        if (blend_backward_fixed_) {
+            splat_grads_fixed_ = gpu::Buffer();
+            splat_grads_fixed_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * 8,
+                                             gpu::MemoryKind::device, "per-splat gradients (fixed point)");
+        }
         capacity_ = gaussians;
     }
     if (pixels > pixel_capacity_) {
@@ -84,7 +98,9 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
                                              VkDeviceAddress pixel_grad) {
     auto& f = frame_;
-    stream.fill(splat_grads_, 0, 0, uint64_t(scene.layout.count) * kSplatGradStride * 4);
+    const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
+    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * 4);
+    if (blend_backward_fixed_) stream.fill(splat_grads_fixed_, 0, 0, uint64_t(grad_floats) * 8);
     stream.fill(status_, 0);
     stream.barrier();
     const BlendBackwardPush backward{.camera = f.camera.address(),
@@ -96,10 +112,19 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                      .last = last_.address(),
                                      .pixel_grad = pixel_grad,
                                      .splat_grads = splat_grads_.address()};
-    if (blend_backward_)
+    if (blend_backward_fixed_) {
+        BlendBackwardPush fixed = backward;
+        fixed.splat_grads = splat_grads_fixed_.address();  // Int64s: the shader reads it so
+        stream.dispatch(*blend_backward_fixed_, fixed, tiles_x_, tiles_y_);
+        stream.barrier();
+        stream.dispatch(*from_fixed_,
+                        {.totals = splat_grads_fixed_.address(), .splat_grads = splat_grads_.address(), .count = grad_floats},
+                        gpu::groups_for(grad_floats));
+    } else if (blend_backward_) {
         stream.dispatch(*blend_backward_, backward, tiles_x_, tiles_y_);
-    else
+    } else {
         stream.dispatch(*blend_backward_cas_, backward, tiles_x_, tiles_y_);
+    }
     stream.barrier();
     stream.mark("blend backward");
     stream.dispatch(*preprocess_backward_,
@@ -137,7 +162,8 @@ uint32_t DifferentiableRenderer::status() const {
 }
 
 uint64_t DifferentiableRenderer::device_bytes() const {
-    return frame_.device_bytes() + render_params_.size() + splat_grads_.size() + transmittance_.size() +
+    return frame_.device_bytes() + render_params_.size() + splat_grads_.size() + splat_grads_fixed_.size() +
+           transmittance_.size() +
            last_.size() + status_.size();
 }
 

@@ -5,7 +5,8 @@
 // per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour) ->
 // preprocess_backward (gradients of every raw parameter). Both are recorded into the caller's
 // command stream, so a training step is one submission. Kernels: shaders/train/{train_activate,
-// blend_train,blend_backward,blend_backward_cas,preprocess_backward}.comp, layouts in
+// blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,splat_grads_from_fixed,
+// preprocess_backward}.comp, layouts in
 // shaders/train/differentiable_renderer.h.
 #include <cstdint>
 #include <memory>
@@ -17,12 +18,15 @@
 #include "render/frame_resources.hpp"
 #include "render/tile_binning.hpp"
 #include "train/trainable_scene.hpp"
+#include "vksplat/train/gradients.hpp"
 
 namespace vksplat::shader::train {
 struct TrainActivateKernel;
 struct BlendTrainKernel;
 struct BlendBackwardKernel;
 struct BlendBackwardCasKernel;
+struct BlendBackwardFixedKernel;
+struct SplatGradsFromFixedKernel;
 struct PreprocessBackwardKernel;
 }  // namespace vksplat::shader::train
 
@@ -30,8 +34,9 @@ namespace vksplat::train {
 
 class DifferentiableRenderer {
 public:
-    // compare_and_swap: sum gradients with the CAS loop even where the device adds floats atomically.
-    explicit DifferentiableRenderer(const gpu::Context& context, bool compare_and_swap = false);
+    // How the blend backward sums gradients (GradientSums). Throws InputError for fixed_point on a
+    // device without 64-bit buffer atomics.
+    explicit DifferentiableRenderer(const gpu::Context& context, GradientSums sums = GradientSums::device_default);
     ~DifferentiableRenderer();
 
     // Sizes the buffers for the scene and the image (keeps them where they suffice). Tile entries
@@ -71,14 +76,18 @@ private:
     render::TileBinning binning_;
     std::unique_ptr<gpu::Kernel<shader::train::TrainActivateKernel>> activate_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendTrainKernel>> blend_;
-    // One of the two: with float atomics, else with compare-and-swap loops.
+    // One of the three: with float atomics, with compare-and-swap loops, or in fixed point (with
+    // the pass that turns its totals into floats).
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardKernel>> blend_backward_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardCasKernel>> blend_backward_cas_;
+    std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardFixedKernel>> blend_backward_fixed_;
+    std::unique_ptr<gpu::Kernel<shader::train::SplatGradsFromFixedKernel>> from_fixed_;
     std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
     uint32_t pixel_capacity_ = 0;
     gpu::Buffer render_params_, splat_grads_;      // per Gaussian
+    gpu::Buffer splat_grads_fixed_;                // per Gaussian, fixed_point sums only
     gpu::Buffer transmittance_, last_;             // per pixel
     gpu::Buffer status_, readback_;
     uint32_t tiles_x_ = 0, tiles_y_ = 0;

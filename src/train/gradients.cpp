@@ -24,7 +24,7 @@ RenderGradients render_gradients(const gpu::Context& context, const GaussianClou
         throw std::invalid_argument("render_gradients: the cloud needs sanitising first (see sanitize())");
 
     const TrainableScene scene = TrainableScene::upload(context, cloud);
-    DifferentiableRenderer renderer(context, sums == GradientSums::compare_and_swap);
+    DifferentiableRenderer renderer(context, sums);
     renderer.ensure(scene.layout.count, pixels, tiles);
     std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
     for (size_t p = 0; p < pixels; ++p) std::memcpy(&pixel_weights[4 * p], &weights[3 * p], 3 * sizeof(float));

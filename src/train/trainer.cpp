@@ -68,7 +68,7 @@ struct Trainer::Impl {
     Impl(const gpu::Context& c, const TrainOptions& o)
         : context(c),
           options(o),
-          renderer(c),
+          renderer(c, o.deterministic ? GradientSums::fixed_point : GradientSums::device_default),
           loss(c),
           adam(c),
           densify(c),

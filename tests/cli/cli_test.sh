@@ -342,6 +342,19 @@ grep -q '"strategy": "budget"' "$work/trained_budget/metrics.json" && [ -f "$wor
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: budget run's metrics.json or report.html"; }
 expect train-budget-beyond-memory 0 "--max-gaussians 100000000: the memory budget holds about" -- "$vksplat" train \
   "$work/train_data" -o "$work/trained_huge" --iters 2 --max-gaussians 100000000 --memory-budget 400 --quiet
+# --deterministic: two runs write the same bytes (without it, float sums added in another order make
+# two such runs of 250 steps differ on lavapipe too); finetune and prune --recover likewise.
+for run in 1 2; do
+  "$vksplat" train "$work/train_data" -o "$work/trained_det$run" --iters 250 --max-gaussians 3000 --white-background \
+    --quiet --deterministic >/dev/null 2>&1
+  "$vksplat" finetune "$work/trained_det1/point_cloud.ply" --cameras "$work/three.json" --images "$work/photos3" \
+    --background 1,1,1 --iters 20 --quiet --deterministic -o "$work/refit_det$run.ply" >/dev/null 2>&1
+  "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 \
+    --rounds 2 --images "$work/photos3" --background 1,1,1 --deterministic -o "$work/recovered_det$run.ply" >/dev/null 2>&1
+done
+cmp -s "$work/trained_det1/point_cloud.ply" "$work/trained_det2/point_cloud.ply" &&
+  cmp -s "$work/refit_det1.ply" "$work/refit_det2.ply" && cmp -s "$work/recovered_det1.ply" "$work/recovered_det2.ply" && grep -q '"deterministic": true' "$work/trained_det1/metrics.json" &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: two --deterministic runs differ"; }
 expect train-into-its-data 2 "cameras.json: is an input of this command" -- "$vksplat" train "$work/train_data" \
   -o "$work/train_data" --iters 20 --force
 same_file_or_fail train-into-its-data "$work/train_data/cameras.json" "$work/three.json"

@@ -175,17 +175,18 @@ TEST_F(Gradients, WithABackgroundAndLowerShDegree) { check_every_type(21, 1, {0.
 
 TEST_F(Gradients, ThroughTheJacobianClampAndTheColourClamp) { check_every_type(33, 2, {0.0f, 0.0f, 0.0f}, true); }
 
-// The compare-and-swap loop (devices without float atomics) sums the same gradients: equal up to
-// the order of float additions.
-TEST_F(Gradients, CompareAndSwapSumsAgreeWithFloatAtomics) {
+// The compare-and-swap loop (devices without float atomics) and the fixed-point sums (--deterministic)
+// give the same gradients as float atomics: equal up to the order of float additions and, for fixed
+// point, its 2^-40 steps.
+void expect_same_gradients(const gpu::Context& context, train::GradientSums sums) {
     const GaussianCloud cloud = random_scene(17, 300, 3);
     const Camera camera = forward_camera(96, 64, 80.0);
     std::mt19937 rng(2);
     std::vector<float> weights(size_t(camera.width) * camera.height * 3);
     for (auto& w : weights) w = std::uniform_real_distribution<float>(-1.0f, 1.0f)(rng);
-    const auto atomics = train::render_gradients(context(), cloud, camera, {}, weights);
-    const auto cas = train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::compare_and_swap);
-    std::printf("  float atomics on this device: %s\n", context().info().float_atomics ? "yes" : "no");
+    const auto atomics = train::render_gradients(context, cloud, camera, {}, weights);
+    const auto cas = train::render_gradients(context, cloud, camera, {}, weights, sums);
+    std::printf("  float atomics on this device: %s\n", context.info().float_atomics ? "yes" : "no");
     const auto relative = [](const std::vector<float>& a, const std::vector<float>& b) {
         double diff = 0, norm = 0;
         for (size_t i = 0; i < a.size(); ++i) {
@@ -202,6 +203,25 @@ TEST_F(Gradients, CompareAndSwapSumsAgreeWithFloatAtomics) {
     double norm = 0;
     for (float g : atomics.gradient.positions) norm += double(g) * g;
     EXPECT_GT(norm, 0.0);  // not two empty gradients agreeing
+}
+
+TEST_F(Gradients, CompareAndSwapSumsAgreeWithFloatAtomics) {
+    expect_same_gradients(context(), train::GradientSums::compare_and_swap);
+}
+
+TEST_F(Gradients, FixedPointSumsAgreeWithFloatAtomicsAndRepeatExactly) {
+    if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit buffer atomics on this device";
+    expect_same_gradients(context(), train::GradientSums::fixed_point);
+    const GaussianCloud cloud = random_scene(5, 2000, 1, 2.0f, 8.0f, 0.05f, 0.6f);
+    const Camera camera = forward_camera(128, 96, 100.0);
+    const std::vector<float> weights(size_t(camera.width) * camera.height * 3, 0.25f);
+    const auto first = train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::fixed_point);
+    for (int run = 0; run < 3; ++run) {
+        const auto again = train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::fixed_point);
+        EXPECT_EQ(again.gradient.positions, first.gradient.positions);
+        EXPECT_EQ(again.gradient.sh, first.gradient.sh);
+        EXPECT_EQ(again.gradient.opacity_logits, first.gradient.opacity_logits);
+    }
 }
 
 }  // namespace

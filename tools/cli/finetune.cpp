@@ -22,7 +22,7 @@ struct FinetuneArgs {
     uint64_t iterations = 5000, checkpoint_every = 1000, seed = 0;
     std::vector<float> background{0, 0, 0};
     std::string position_lr = "final";
-    bool resume = false, force = false, quiet = false;
+    bool resume = false, force = false, quiet = false, deterministic = false;
 };
 
 void print_status(const train::LoopStatus& s, bool terminal) {
@@ -45,6 +45,7 @@ int run_finetune(const FinetuneArgs& args) {
     options.train.background = {args.background[0], args.background[1], args.background[2]};
     options.seed = args.seed;
     if (args.position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
+    options.train.deterministic = args.deterministic;
     options.checkpoint = args.checkpoint.empty() ? std::filesystem::path(args.out + ".checkpoint")
                                                  : std::filesystem::path(args.checkpoint);
     options.checkpoint_every = args.checkpoint_every;
@@ -141,6 +142,8 @@ void register_finetune(CLI::App& app, Action& action) {
     command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
         ->check(count_in(1));
     command->add_flag("--resume", args->resume, "continue from the checkpoint");
+    command->add_flag("--deterministic", args->deterministic,
+                      "sum gradients in fixed point so that the same inputs give the same bytes every run");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite an existing output");

@@ -30,7 +30,7 @@ struct PruneArgs {
     std::optional<uint64_t> recover;
     std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
     std::string position_lr = "decay";
-    bool force = false;
+    bool force = false, deterministic = false;
 };
 
 std::optional<std::filesystem::path> optional_path(const std::string& path) {
@@ -112,6 +112,7 @@ int run_prune(const PruneArgs& args) {
                             std::holds_alternative<prune::SizeBudget>(options.selector);
         recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
         if (args.position_lr == "final") recover.finetune.train.position_schedule = train::PositionSchedule::final_rate;
+        recover.finetune.train.deterministic = args.deterministic;
         options.recover = recover;
     }
 
@@ -221,8 +222,11 @@ void register_prune(CLI::App& app, Action& action) {
                                             "with --recover: decay (default) the position rate from its initial to\n"
                                             "its final value in each re-fit, or keep it at the final value")
                             ->check(CLI::IsMember({"final", "decay"}));
+    auto* deterministic = command->add_flag("--deterministic", args->deterministic,
+                                            "with --recover: sum gradients in fixed point, the same bytes every run");
     rounds->needs(recover);
     position_lr->needs(recover);
+    deterministic->needs(recover);
     command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);

@@ -23,7 +23,7 @@ struct TrainArgs {
     double budget_peak = train::BudgetSchedule{}.peak;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
-    bool white_background = false, resume = false, force = false, quiet = false;
+    bool white_background = false, resume = false, force = false, quiet = false, deterministic = false;
 };
 
 int run_train(const TrainArgs& args) {
@@ -34,6 +34,7 @@ int run_train(const TrainArgs& args) {
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
     options.recipe.budget.peak = args.budget_peak;
     options.evaluate_every = args.evaluate_every;
+    options.deterministic = args.deterministic;
     options.recipe.densify_until = args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
     options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
@@ -146,6 +147,8 @@ void register_train(CLI::App& app, Action& action) {
         ->check(count_in(1));
     command->add_option("--seed", args->seed, "seed of the view order and random starts")->check(count_in(0));
     command->add_flag("--resume", args->resume, "continue from OUT_DIR/checkpoint");
+    command->add_flag("--deterministic", args->deterministic,
+                      "sum gradients in fixed point so that the same data and options give the same bytes every run");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_flag("--force", args->force, "overwrite existing outputs");
     add_gpu_options(*command, args->gpu);

@@ -93,6 +93,7 @@ struct TrainOptions {
     // Test PSNR measured every this many iterations (and at the last) into TrainResult::history;
     // 0: only at the end. Its time is not in the run's seconds.
     uint64_t evaluate_every = 0;
+    bool deterministic = false;         // train::TrainOptions::deterministic
 };
 
 // The run as it went: after every 500th step (and the last) the Gaussians held; where measured

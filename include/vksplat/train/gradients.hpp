@@ -22,8 +22,11 @@ struct RenderGradients {
 
 // How the blend backward sums each splat's gradients over pixels: with float atomics where the
 // device has them (VK_EXT_shader_atomic_float), else with the compare-and-swap loop every device
-// can run; compare_and_swap forces the loop (to test it on any device).
-enum class GradientSums { device_default, compare_and_swap };
+// can run; compare_and_swap forces the loop (to test it on any device). Either way the order of
+// the float additions varies from run to run, and so do the last bits of the sums. fixed_point
+// adds 64-bit integers (2^-40 steps) instead, whose totals do not depend on the order: the same
+// gradients, to ~1e-12 absolute, every run (train --deterministic; needs 64-bit buffer atomics).
+enum class GradientSums { device_default, compare_and_swap, fixed_point };
 
 // Throws std::invalid_argument if weights is not 3 per pixel or the cloud needs sanitising (its
 // gradient would not line up with it); InputError for an invalid camera.

@@ -22,6 +22,7 @@
 #include "vksplat/render/renderer.hpp"
 #include "vksplat/scene/scene.hpp"
 #include "vksplat/train/checkpoint.hpp"
+#include "vksplat/train/gradients.hpp"
 
 namespace vksplat::io {
 struct ImageRGB;
@@ -54,6 +55,10 @@ struct TrainOptions {
     double ssim_weight = 0.2;            // lambda_dssim
     std::array<float, 3> background{0.0f, 0.0f, 0.0f};
     int sh_degree = 3;                   // SH bands evaluated (capped at the scene's degree)
+    // Sum the per-splat gradients in fixed point (GradientSums::fixed_point), so that a run with the
+    // same inputs gives the same bytes every time; the default float atomics add in a different
+    // order each step, so densification and the result drift apart between runs.
+    bool deterministic = false;
     // Written into every checkpoint; a checkpoint of another owner is refused on resume.
     CheckpointOwner checkpoint_owner;
 };
