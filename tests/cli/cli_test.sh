@@ -502,5 +502,66 @@ sed -i 's/OPENCV/OPENCV_FISHEYE/' "$work/colmap_lens/sparse/0/cameras.txt"
 expect train-refuses-fisheye-lens 2 "camera model OPENCV_FISHEYE is not supported" -- "$vksplat" train \
   "$work/colmap_lens" -o "$work/trained_fisheye" --iters 5 --test-every 0
 
+# Sweep progress and report (issue 32): each re-fit reports its iterations with the time the whole
+# sweep has left, no line says "0.0 s left" before the last, and the report opens with a one-line
+# summary, says "identical" where sweep.csv keeps inf, and has JPEG sheets.
+output=$("$vksplat" sweep "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" \
+  --background 1,1,1 --out "$work/sweep_progress" --methods blend --fractions 0,0.5 --recover 6 --recover-rounds 1 \
+  --timing-reps 0 --no-scoring-cost 2>&1)
+left_lines=$(grep "left in all" <<<"$output")
+if grep -q "^re-fit of blend at 0.5 dropped 6/6 .* left in all" <<<"$output" &&
+   ! head -n -1 <<<"$left_lines" | grep -q " 0\.0 s left" &&
+   tail -n 1 <<<"$left_lines" | grep -q "^comparison sheets 3/3 .* 0\.0 s left in all" &&
+   grep -q "^best trade: blend" <<<"$output"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: sweep --recover progress lines"; echo "$output" | sed 's/^/    /' | tail -n 25
+fi
+report=$work/sweep_progress/report.html
+if grep -q '<p class="note summary">best trade: ' "$report" && grep -q "<td>identical</td>" "$report" &&
+   ! grep -q ">inf<" "$report" && grep -q "^blend,0,.*,inf," "$work/sweep_progress/sweep.csv" &&
+   [ "$(ls "$work/sweep_progress/sheets" | grep -c '\.jpg$')" -eq 3 ]; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: sweep report: summary, 'identical', CSV inf or JPEG sheets"
+fi
+
+# prune --max-mb (issue 30): the file written fits in M x 10^6 bytes in the output's format, SH bands
+# traded against Gaussians; a size no model reaches names the smallest, and what --max-mb cannot go
+# with is refused before any work.
+expect prune-max-mb 0 "wrote $work/max.spz" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method opacity --max-mb 0.3 -o "$work/max.spz"
+[ -f "$work/max.spz" ] && [ "$(stat -c %s "$work/max.spz")" -le 300000 ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.3 wrote more than 300000 bytes"; }
+expect prune-max-mb-compressed-ply 0 "with 100% of the higher bands dropped per Gaussian" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.5 -o "$work/max.compressed.ply"
+[ -f "$work/max.compressed.ply" ] && [ "$(stat -c %s "$work/max.compressed.ply")" -le 500000 ] &&
+  passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.5 wrote more than 500000 bytes"; }
+refused_before_work prune-max-mb-too-small "$work/tiny.spz" \
+  "--max-mb 1e-05: no model fits in it: the smallest, one Gaussian at SH degree 0, takes" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.00001 -o "$work/tiny.spz"
+expect prune-max-mb-zero any-failure "--max-mb: '0' is not a finite number > 0" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0 -o "$work/zero.spz"
+expect prune-max-mb-negative any-failure "--max-mb: '-1' is not a finite number > 0" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb -1 -o "$work/zero.spz"
+for other in "--ratio 0.5" "--keep 5" "--max-psnr-drop 1" "--allow-sh-reduction"; do
+  # shellcheck disable=SC2086
+  expect "prune-max-mb-with $other" any-failure "excludes" -- "$vksplat" prune "$work/demo/demo.ply" \
+    --cameras "$work/cameras.json" --method opacity --max-mb 0.3 $other -o "$work/both.spz"
+done
+refused_before_work prune-max-mb-rounds "$work/rounds.spz" "--rounds 2: a size budget re-fits the model it chose once" \
+  -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.3 \
+  --recover 5 --rounds 2 --images "$work/photos" -o "$work/rounds.spz"
+before=$(stat -c %s "$work/max.spz")
+expect prune-max-mb-refuses-overwrite 2 "max.spz: already exists" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --max-mb 0.2 -o "$work/max.spz"
+[ "$(stat -c %s "$work/max.spz")" = "$before" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: prune --max-mb replaced an existing output"; }
+expect prune-max-mb-recover 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --max-mb 0.2 --recover 5 --images "$work/photos" \
+  --background 1,1,1 -o "$work/max_refit.spz"
+[ -f "$work/max_refit.spz" ] && [ "$(stat -c %s "$work/max_refit.spz")" -le 200000 ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.2 --recover wrote more than 200000 bytes"; }
+
 echo "cli: $passed passed, $failed failed"
 [ $failed -eq 0 ]
