@@ -108,6 +108,9 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                     result.seconds, result.strategy_seconds, result.gaussians, result.gpu_ms_per_iteration,
                     double(result.peak_device_bytes) / 1e6, result.scene_extent);
+        std::printf("GPU time per step by pass (medians):");
+        for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
+        std::printf("\n");
         std::printf("strategy %s: %zu pruned by importance in %llu events (%.1f s scoring)\n", result.strategy.c_str(),
                     result.budget_events.pruned, static_cast<unsigned long long>(result.budget_events.prune_events),
                     result.budget_events.importance_seconds);

@@ -95,6 +95,13 @@ train::Importance importance_over(const gpu::Context& context, const TrainingDat
     };
 }
 
+// Median GPU time of each pass of a step, in recording order.
+nlohmann::json stages_json(const std::vector<StageTiming>& stages) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& stage : stages) out.push_back({{"stage", stage.stage}, {"ms", stage.milliseconds}});
+    return out;
+}
+
 nlohmann::json history_json(const std::vector<TrainSnapshot>& history) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& h : history)
@@ -340,7 +347,8 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"pruned_by_importance", result.budget_events.pruned},
                            {"importance_seconds", result.budget_events.importance_seconds},
                            {"evaluate_seconds", result.evaluate_seconds},
-                           {"history", history_json(result.history)}};
+                           {"history", history_json(result.history)},
+                           {"gpu_ms_per_stage", stages_json(result.stages)}};
     write_json(result.metrics_json, metrics, mode);
     write_training_report(options.out_dir, result, data.folder.string(), mode);
     return result;

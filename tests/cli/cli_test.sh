@@ -342,6 +342,10 @@ grep -q '"strategy": "budget"' "$work/trained_budget/metrics.json" && [ -f "$wor
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: budget run's metrics.json or report.html"; }
 expect train-budget-beyond-memory 0 "--max-gaussians 100000000: the memory budget holds about" -- "$vksplat" train \
   "$work/train_data" -o "$work/trained_huge" --iters 2 --max-gaussians 100000000 --memory-budget 400 --quiet
+expect train-profile 0 "GPU time per step by pass (medians):  preprocess" -- "$vksplat" train "$work/train_data" \
+  -o "$work/trained_profile" --iters 5 --white-background --quiet --profile
+grep -q '"gpu_ms_per_stage"' "$work/trained_profile/metrics.json" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: metrics.json has no per-pass GPU times"; }
 # --deterministic: two runs write the same bytes (without it, float sums added in another order make
 # two such runs of 250 steps differ on lavapipe too); finetune and prune --recover likewise.
 for run in 1 2; do

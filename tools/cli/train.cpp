@@ -23,7 +23,7 @@ struct TrainArgs {
     double budget_peak = train::BudgetSchedule{}.peak;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
-    bool white_background = false, resume = false, force = false, quiet = false, deterministic = false;
+    bool white_background = false, resume = false, force = false, quiet = false, deterministic = false, profile = false;
 };
 
 int run_train(const TrainArgs& args) {
@@ -82,6 +82,11 @@ int run_train(const TrainArgs& args) {
                 "peak device memory %.1f MB\n",
                 static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                 result.seconds, result.gpu_ms_per_iteration, result.gaussians, double(result.peak_device_bytes) / 1e6);
+    if (args.profile) {
+        std::printf("GPU time per step by pass (medians):");
+        for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
+        std::printf("\n");
+    }
     if (result.budget_events.prune_events > 0)
         std::printf("%s recipe: %zu Gaussians removed by blend weight in %llu prunes (%.1f s scoring)\n",
                     result.strategy.c_str(), result.budget_events.pruned,
@@ -150,6 +155,8 @@ void register_train(CLI::App& app, Action& action) {
     command->add_flag("--deterministic", args->deterministic,
                       "sum gradients in fixed point so that the same data and options give the same bytes every run");
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
+    command->add_flag("--profile", args->profile,
+                      "print each pass's median GPU time per step (Vulkan timestamps; metrics.json has them always)");
     command->add_flag("--force", args->force, "overwrite existing outputs");
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_train(*args); }; });
