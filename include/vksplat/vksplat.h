@@ -170,6 +170,15 @@ vksplat_status vksplat_camera_look_at(const double eye[3], const double target[3
                                       int height, double fx, double fy, vksplat_camera* camera,
                                       vksplat_error* error);
 
+/* Reads a camera file: INRIA cameras.json, a COLMAP model folder, a NeRF transforms*.json
+ * (vksplat/io/cameras.hpp), e.g. the views to prune over. On success *cameras holds *count cameras
+ * in the file's order (NULL when there are none), allocated by vksplat: free them with
+ * vksplat_cameras_free. */
+vksplat_status vksplat_cameras_load(const char* path, vksplat_camera** cameras, size_t* count, vksplat_error* error);
+
+/* Accepts NULL. */
+void vksplat_cameras_free(vksplat_camera* cameras);
+
 /* ---- rendering --------------------------------------------------------------------------------- */
 
 typedef struct vksplat_render_settings {

@@ -14,6 +14,8 @@
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
+#include "vksplat/io/cameras.hpp"
+#include "vksplat/io/dataset.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
 #include "vksplat/render/renderer.hpp"
@@ -162,7 +164,10 @@ TEST_F(CApiTest, RecordsIntoTheCallersBufferWhatItRenders) {
 }
 
 TEST_F(CApiTest, PrunesAsThePruneJobDoes) {
-    const std::vector<Camera> cameras = row_of_five_views();
+    // The views come from a camera file, read by both APIs.
+    const auto camera_file = dir_ / "cameras.json";
+    io::write_inria_cameras(camera_file, row_of_five_views());
+    const std::vector<Camera> cameras = io::read_cameras(camera_file);
     const auto path = scene_file(random_scene(9, 600, 1));
     // What `vksplat prune --ratio 0.4` keeps when it scores over all five views.
     jobs::PruneOptions options;
@@ -175,13 +180,19 @@ TEST_F(CApiTest, PrunesAsThePruneJobDoes) {
     jobs::prune_scene(cpp, io::read_scene(path), cameras, options);
     const GaussianCloud expected = io::read_scene(options.out);
 
-    std::vector<vksplat_camera> views;
-    for (const Camera& camera : cameras) views.push_back(c_camera(camera));
+    vksplat_camera* views = nullptr;
+    size_t view_count = 0;
+    ASSERT_EQ(vksplat_cameras_load(camera_file.c_str(), &views, &view_count, &error_), VKSPLAT_OK) << error_.message;
+    ASSERT_EQ(view_count, cameras.size());
+    for (size_t i = 0; i < view_count; ++i) {
+        const vksplat_camera same = c_camera(cameras[i]);
+        EXPECT_EQ(std::memcmp(&views[i], &same, sizeof same), 0) << "camera " << i;
+    }
     vksplat_prune_options asked{};
     asked.method = VKSPLAT_SCORE_FOOTPRINT;
     asked.ratio = 0.4;
-    asked.views = views.data();
-    asked.view_count = views.size();
+    asked.views = views;
+    asked.view_count = view_count;
     vksplat_scene* scene = load(path);
     vksplat_scene* pruned = nullptr;
     ASSERT_EQ(vksplat_prune(renderer_, scene, &asked, &pruned, &error_), VKSPLAT_OK) << error_.message;
@@ -215,6 +226,7 @@ TEST_F(CApiTest, PrunesAsThePruneJobDoes) {
     EXPECT_NE(std::string(error_.message).find("1.5"), std::string::npos) << error_.message;
     vksplat_scene_destroy(half);
     vksplat_scene_destroy(pruned);
+    vksplat_cameras_free(views);
     vksplat_scene_destroy(scene);
 }
 
@@ -225,6 +237,15 @@ TEST_F(CApiTest, BadInputGivesItsStatusAndAMessageNamingIt) {
     EXPECT_EQ(vksplat_scene_load(missing.c_str(), &scene, &error_), VKSPLAT_INVALID_INPUT);
     EXPECT_EQ(scene, nullptr);
     EXPECT_NE(std::string(error_.message).find(missing.string()), std::string::npos) << error_.message;
+
+    // A missing camera file, named; no cameras come back.
+    vksplat_camera* cameras = reinterpret_cast<vksplat_camera*>(&error_);
+    size_t camera_count = 7;
+    const auto no_cameras = dir_ / "cameras.json";
+    EXPECT_EQ(vksplat_cameras_load(no_cameras.c_str(), &cameras, &camera_count, &error_), VKSPLAT_INVALID_INPUT);
+    EXPECT_EQ(cameras, nullptr);
+    EXPECT_EQ(camera_count, 0u);
+    EXPECT_NE(std::string(error_.message).find(no_cameras.string()), std::string::npos) << error_.message;
 
     // A truncated PLY, named, and said to be truncated.
     const auto whole = scene_file(random_scene(3, 50, 0));
@@ -316,6 +337,7 @@ TEST_F(CApiTest, NullHandlesAreRefusedByName) {
     EXPECT_EQ(vksplat_render(nullptr, &view, nullptr, &image, nullptr), VKSPLAT_INVALID_ARGUMENT);
     // Destroying nothing is allowed.
     vksplat_scene_destroy(nullptr);
+    vksplat_cameras_free(nullptr);
     vksplat_renderer_destroy(nullptr);
     vksplat_context_destroy(nullptr);
 }
