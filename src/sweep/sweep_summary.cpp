@@ -22,7 +22,7 @@ std::string percent(double fraction) { return format(fraction >= 0.1 ? "%.0f%%" 
 std::string speed(const ModelMeasure& unpruned, const ModelMeasure& pruned, bool cpu) {
     if (!(unpruned.ms_per_frame > 0) || !(pruned.ms_per_frame > 0)) return "";
     const double ratio = unpruned.ms_per_frame / pruned.ms_per_frame;
-    return ", " + (ratio >= 1 ? format("%.2gx faster", ratio) : format("%.2gx slower", 1 / ratio)) + " (" +
+    return ", " + (ratio >= 1 ? format("%.1fx faster", ratio) : format("%.1fx slower", 1 / ratio)) + " (" +
            format("%.2f", unpruned.ms_per_frame) + " -> " + format("%.2f", pruned.ms_per_frame) + " ms per frame" +
            (cpu ? ", timed on a CPU" : "") + ")";
 }
@@ -35,17 +35,19 @@ std::string trade(const SweepRow& row, const SweepResult& result) {
 }  // namespace
 
 std::string summary_line(const SweepResult& result) {
+    // Rows that drop nothing (fraction 0 where the lossless pass found nothing) trade nothing.
     const SweepRow* best = nullptr;
     for (const SweepRow& row : result.rows)
-        if (row.delta_psnr >= -kAcceptableLossDb &&
+        if (row.dropped > 0 && row.delta_psnr >= -kAcceptableLossDb &&
             (!best || row.dropped > best->dropped || (row.dropped == best->dropped && row.delta_psnr > best->delta_psnr)))
             best = &row;
     if (best) return "best trade: " + trade(*best, result);
-    // Every row loses more: the least loss at the smallest fraction swept.
+    // Every row loses more: the least loss at the smallest fraction swept that drops any.
     for (const SweepRow& row : result.rows)
-        if (!best || row.fraction < best->fraction || (row.fraction == best->fraction && row.delta_psnr > best->delta_psnr))
+        if (row.dropped > 0 && (!best || row.fraction < best->fraction ||
+                                (row.fraction == best->fraction && row.delta_psnr > best->delta_psnr)))
             best = &row;
-    if (!best) return "no pruned model was measured";
+    if (!best) return "no Gaussian was dropped: nothing to trade";
     return "no pruned model stays within " + format("%g", kAcceptableLossDb) + " dB of the unpruned one; the least loss: " +
            trade(*best, result);
 }

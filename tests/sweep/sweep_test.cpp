@@ -271,18 +271,23 @@ TEST(SweepHelpers, SummaryLineNamesTheBestTradeWithinOneDecibel) {
         r.measure.ms_per_frame = ms;
         return r;
     };
-    result.rows = {row("blend", 0.5, -0.1, 1.5), row("blend", 0.8, -0.42, 0.95), row("blend", 0.9, -1.5, 0.5),
+    result.rows = {row("blend", 0, 0, 2.0),         row("blend", 0.5, -0.1, 1.5),
+                   row("blend", 0.8, -0.42, 0.95),   row("blend", 0.9, -1.5, 0.5),
                    row("blend+recover", 0.9, -0.9, 0.5), row("random", 0.8, -3, 1.0)};
     EXPECT_EQ(sweep::summary_line(result),
-              "best trade: blend+recover, 90% fewer Gaussians at -0.90 dB, 4x faster (2.00 -> 0.50 ms per frame)");
-    result.rows[3].delta_psnr = -1.2;
+              "best trade: blend+recover, 90% fewer Gaussians at -0.90 dB, 4.0x faster (2.00 -> 0.50 ms per frame)");
+    result.rows[4].delta_psnr = -1.2;
     result.device_is_cpu = true;
     EXPECT_EQ(sweep::summary_line(result), "best trade: blend, 80% fewer Gaussians at -0.42 dB, 2.1x faster (2.00 -> "
                                            "0.95 ms per frame, timed on a CPU)");
-    result.rows = {row("blend", 0.5, -1.5, 4.0), row("random", 0.5, -2.5, 1.0), row("blend", 0.9, -1.2, 1.0)};
+    // Fraction 0 drops nothing: no trade, though within 1 dB.
+    result.rows = {row("blend", 0, 0, 2.0), row("blend", 0.5, -1.5, 4.0), row("random", 0.5, -2.5, 1.0),
+                   row("blend", 0.9, -1.2, 1.0)};
     EXPECT_EQ(sweep::summary_line(result), "no pruned model stays within 1 dB of the unpruned one; the least loss: "
-                                           "blend, 50% fewer Gaussians at -1.50 dB, 2x slower (2.00 -> 4.00 ms per "
+                                           "blend, 50% fewer Gaussians at -1.50 dB, 2.0x slower (2.00 -> 4.00 ms per "
                                            "frame, timed on a CPU)");
+    result.rows = {row("blend", 0, 0, 2.0)};
+    EXPECT_EQ(sweep::summary_line(result), "no Gaussian was dropped: nothing to trade");
 }
 
 TEST_F(Sweep, RecoverAddsARefittedRowBesideEachPrunedOne) {

@@ -157,7 +157,8 @@ std::string best_method(const std::vector<SweepRow>& rows);
 // The sweep in one line for the top of the report: the prune-only or re-fitted row that drops the
 // most Gaussians within 1 dB of the unpruned PSNR, with its loss and speed-up, e.g. "best trade:
 // blend+recover, 80% fewer Gaussians at -0.42 dB, 2.1x faster (1.20 -> 0.57 ms per frame)"; when
-// no row stays within 1 dB, the row that loses least at the smallest fraction swept, said so.
+// no row that drops any stays within 1 dB, the one that loses least at the smallest such fraction,
+// said so.
 std::string summary_line(const SweepResult& result);
 
 // Runs the sweep and writes its files into options.out_dir (created if missing). Refuses, before
