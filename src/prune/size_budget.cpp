@@ -42,9 +42,10 @@ std::vector<double> kept_values(std::span<const double> values, const KeepMask& 
     return kept;
 }
 
+// Megabytes of 10^6 bytes, as --max-mb takes them.
 std::string megabytes(size_t bytes) {
     char text[32];
-    std::snprintf(text, sizeof text, "%.6g MB", double(bytes) / 1e6);
+    std::snprintf(text, sizeof text, "%.6g", double(bytes) / 1e6);
     return text;
 }
 
@@ -86,7 +87,7 @@ void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budge
     const std::string what = smallest.empty() ? "a scene of no Gaussians" : "one Gaussian at SH degree 0";
     throw InputError("--max-mb " + megabytes(budget.max_bytes),
                      "no model fits in it: the smallest, " + what + ", takes " + std::to_string(bytes) + " bytes (" +
-                         megabytes(bytes) + ") as " + budget.format);
+                         megabytes(bytes) + " MB) as " + budget.format);
 }
 
 BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
