@@ -5,9 +5,9 @@
 # background where it must not. usage: viewer_test.sh VKSPLAT_BINARY WORK_DIR
 # Exits 77 (skipped) where Xvfb, xdotool or ImageMagick is not installed.
 set -u
-vksplat=$1
+vksplat=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the viewer runs in $work
 work=$2
-for tool in Xvfb xdotool import convert compare; do
+for tool in Xvfb xdotool import convert compare identify; do
   command -v "$tool" >/dev/null || { echo "skipped: $tool is not installed (tools/bootstrap.sh test installs it)"; exit 77; }
 done
 rm -rf "$work" && mkdir -p "$work"
@@ -41,7 +41,8 @@ for attempt in 1 2 3; do
   export DISPLAY=:$(cat "$work/display" 2>/dev/null)
   sleep 0.5
   if kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1; then
-    "$vksplat" view "$work/demo/demo.ply" --cameras "$work/cameras.json" --size 320x240 >"$work/view.log" 2>&1 &
+    # In $work, where its screenshots go.
+    (cd "$work" && exec "$vksplat" view demo/demo.ply --cameras cameras.json --size 320x240) >"$work/view.log" 2>&1 &
     viewer_pid=$!
     sleep 1
     kill -0 "$viewer_pid" 2>/dev/null || ! grep -q "cannot open a window" "$work/view.log" && break
@@ -99,6 +100,21 @@ else
   fail "N did not step to the next dataset camera"
 fi
 
+# 0 drops the view-dependent colour (the title says SH 0); C writes what is on screen as
+# vksplat_view_001.png, the window's size, and a second C never replaces it.
+xdotool key --window "$window" 0
+wait_title " SH 0 " || fail "0 should show SH degree 0"
+xdotool key --window "$window" c
+xdotool key --window "$window" c
+for _ in $(seq 300); do [ -f "$work/vksplat_view_002.png" ] && break; sleep 0.2; done
+if [ -f "$work/vksplat_view_001.png" ] && [ -f "$work/vksplat_view_002.png" ]; then
+  [ "$(identify -format %wx%h "$work/vksplat_view_001.png")" = 320x240 ] || fail "the screenshot is not the window's size"
+  expect_mean "$work/vksplat_view_001.png" 160x60+80+90 ">" 0.15 "scene in the middle of the screenshot"
+else
+  fail "C should write vksplat_view_001.png and then vksplat_view_002.png"
+fi
+grep -q "keys: Tab/F orbit or fly" "$work/view.log" || fail "the viewer should print its keys at the start"
+
 # A drag turns the view (leaving the dataset camera), Tab switches to fly mode.
 xdotool mousemove --window "$window" 160 120 mousedown 1 mousemove --window "$window" 220 130 mouseup 1
 wait_title "orbit$" || fail "a drag should leave the dataset camera"
@@ -115,5 +131,21 @@ for _ in $(seq 300); do
 done
 viewer_pid=
 [ "$status" = 0 ] || fail "Escape should close the viewer with exit 0 (got '${status:-still running}')"
+
+# Without --cameras, a cameras.json beside the scene (a trainer's output folder) gives the dataset
+# cameras: the first frame is the top camera's.
+mkdir -p "$work/trained" && cp "$work/demo/demo.ply" "$work/trained/point_cloud.ply" && cp "$work/cameras.json" "$work/trained/"
+window=
+"$vksplat" view "$work/trained/point_cloud.ply" --size 320x240 >"$work/view_beside.log" 2>&1 &
+viewer_pid=$!
+if wait_title "camera 1/2 \(top\)"; then
+  grep -q "using the 2 cameras of .*cameras.json beside the scene" "$work/view_beside.log" ||
+    fail "the viewer should say it uses the cameras beside the scene"
+else
+  fail "a cameras.json beside the scene should give the dataset cameras"
+fi
+kill "$viewer_pid" 2>/dev/null
+wait "$viewer_pid" 2>/dev/null
+viewer_pid=
 
 [ $failed -eq 0 ] && echo "viewer: all checks passed" || { sed 's/^/    /' "$work/view.log"; exit 1; }

@@ -46,13 +46,16 @@ void register_view(CLI::App& app, Action& action) {
     command->footer(
         "Mouse: left drag turns (orbit about the focus point, or the view in fly mode), right or shift+left\n"
         "drag pans, wheel zooms. Keys: Tab or F switches orbit/fly, W A S D Q E fly, N/right and P/left step\n"
-        "through the dataset cameras, +/- zoom, Esc quits. The title shows the frame time.\n"
+        "through the dataset cameras, +/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
+        "folder, never replacing a file), H prints the keys, Esc quits. The title shows the frame time and SH degree.\n"
+        "Without --cameras, a cameras.json beside the scene (a trainer's output folder) gives the up direction\n"
+        "and the dataset cameras.\n"
         "Example:\n  vksplat view point_cloud.ply --cameras cameras.json");
     auto args = std::make_shared<ViewArgs>();
     command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->check(CLI::ExistingPath);
-    command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, else +z)")
+    command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, or those of a cameras.json beside the scene, else +z)")
         ->delimiter(',')
         ->expected(3)
         ->check(number_in());

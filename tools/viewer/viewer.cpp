@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
@@ -14,10 +15,26 @@
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
+#include "vksplat/io/image.hpp"
 #include "vksplat/render/renderer.hpp"
 
 namespace vksplat::viewer {
 namespace {
+
+// What the keys do: printed by H and at the start, named in the title.
+constexpr const char* kKeys =
+    "keys: Tab/F orbit or fly | W A S D Q E fly | N/right, P/left the next or previous dataset camera | "
+    "+/- zoom | 0 1 2 3 SH degree | C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
+
+// The first vksplat_view_NNN.png in the current folder that does not exist yet, so that a
+// screenshot never replaces a file.
+std::filesystem::path next_screenshot() {
+    for (int n = 1;; ++n) {
+        char name[32];
+        std::snprintf(name, sizeof(name), "vksplat_view_%03d.png", n);
+        if (!std::filesystem::exists(name)) return name;
+    }
+}
 
 void check(VkResult result, const char* what) {
     if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
@@ -164,9 +181,25 @@ private:
             case GLFW_KEY_KP_ADD: zoom(1); break;
             case GLFW_KEY_MINUS:
             case GLFW_KEY_KP_SUBTRACT: zoom(-1); break;
+            case GLFW_KEY_0:
+            case GLFW_KEY_1:
+            case GLFW_KEY_2:
+            case GLFW_KEY_3: settings_.max_sh_degree = key - GLFW_KEY_0; break;
+            case GLFW_KEY_C: screenshot(); return;
+            case GLFW_KEY_H: std::printf("%s\n", kKeys); std::fflush(stdout); return;
             default: return;
         }
         dirty_ = true;
+    }
+
+    // The view as it is on screen, rendered again at the window's size and written as a PNG.
+    void screenshot() {
+        const Camera camera = controls_.camera(int(extent_.width), int(extent_.height));
+        const RenderOutput out = renderer_.render(camera, settings_);
+        const std::filesystem::path path = next_screenshot();
+        io::write_png_rgb(path, out.width, out.height, out.rgb.data(), 8);
+        std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(path).string().c_str(), out.width, out.height);
+        std::fflush(stdout);
     }
 
     void zoom(double steps) {
@@ -279,8 +312,10 @@ private:
                                                             std::to_string(cameras_.size()) + " (" +
                                                             cameras_[size_t(dataset_index_)].name + ")"
                                                       : "";
-        std::snprintf(title, sizeof(title), "vksplat view - %s - %zu Gaussians - %.1f ms (%.0f fps) - %s%s",
-                      options_.scene.c_str(), gaussians_, ms, 1000.0 / ms,
+        // A CPU device draws a frame in seconds: frames per second with a decimal there, not "0 fps".
+        const double fps = 1000.0 / ms;
+        std::snprintf(title, sizeof(title), "vksplat view - %s - %zu Gaussians - SH %d - %.1f ms (%.*f fps) - H: keys - %s%s",
+                      options_.scene.c_str(), gaussians_, settings_.max_sh_degree, ms, fps < 10 ? 1 : 0, fps,
                       controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly", where.c_str());
         glfwSetWindowTitle(window_.window(), title);
     }
@@ -312,8 +347,23 @@ int run_viewer(const ViewerOptions& options) {
     GaussianCloud cloud = io::read_scene(options.scene, &notes);
     for (const auto& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
     std::vector<Camera> cameras;
-    if (!options.cameras.empty()) cameras = io::read_cameras(options.cameras, &warnings);
+    if (!options.cameras.empty()) {
+        cameras = io::read_cameras(options.cameras, &warnings);
+    } else if (const auto beside = std::filesystem::path(options.scene).parent_path() / "cameras.json";
+               std::filesystem::is_regular_file(beside)) {
+        // A trainer's output folder holds its cameras beside the scene: they know which way is up
+        // and where the photos were taken from, which the scene alone does not.
+        try {
+            cameras = io::read_cameras(beside, &warnings);
+            std::fprintf(stderr, "using the %zu cameras of %s beside the scene (--cameras names others)\n",
+                         cameras.size(), beside.string().c_str());
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "warning: %s beside the scene is not used: %s\n", beside.string().c_str(), e.what());
+        }
+    }
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    std::printf("%s\n", kKeys);
+    std::fflush(stdout);
     Viewer viewer(options, std::move(cloud), std::move(cameras));
     return viewer.run();
 }
