@@ -22,6 +22,9 @@ cat >"$work/cameras.json" <<'JSON'
  {"id": 1, "img_name": "side", "width": 80, "height": 60, "position": [4, 0, 0],
   "rotation": [[0, 0, -1], [1, 0, 0], [0, -1, 0]], "fx": 70, "fy": 70}]
 JSON
+# The scene with 90% of its Gaussians dropped, for --compare.
+"$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --ratio 0.9 \
+  -o "$work/small.ply" >/dev/null 2>&1 || { echo "FAILED: prune for --compare"; exit 1; }
 
 # Xvfb picks a free display itself and writes its number to fd 3. It is started again if it does not
 # come up answering (another X server may take the same number at the same moment), or if the
@@ -42,7 +45,8 @@ for attempt in 1 2 3; do
   sleep 0.5
   if kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1; then
     # In $work, where its screenshots go.
-    (cd "$work" && exec "$vksplat" view demo/demo.ply --cameras cameras.json --size 320x240) >"$work/view.log" 2>&1 &
+    (cd "$work" && exec "$vksplat" view demo/demo.ply --cameras cameras.json --compare small.ply --size 320x240) \
+      >"$work/view.log" 2>&1 &
     viewer_pid=$!
     sleep 1
     kill -0 "$viewer_pid" 2>/dev/null || ! grep -q "cannot open a window" "$work/view.log" && break
@@ -114,6 +118,25 @@ else
   fail "C should write vksplat_view_001.png and then vksplat_view_002.png"
 fi
 grep -q "keys: Tab/F orbit or fly" "$work/view.log" || fail "the viewer should print its keys at the start"
+
+# B shows the --compare scene from the same view, and B again the first.
+xdotool key --window "$window" b
+if wait_title "B: small.ply - [0-9]+ Gaussians"; then
+  import -window "$window" "$work/compare.png"
+  differing=$(compare -metric AE "$work/vksplat_view_001.png" "$work/compare.png" null: 2>&1)
+  [ "${differing%%.*}" -gt 500 ] 2>/dev/null || fail "the --compare scene should look different ($differing pixels differ)"
+else
+  fail "B should show the --compare scene"
+fi
+xdotool key --window "$window" b
+wait_title "A: demo/demo.ply" || fail "B again should show the first scene"
+
+# Space flies from dataset camera to dataset camera until a key stops it.
+xdotool key --window "$window" space
+wait_title "fly-through - orbit - camera 2/2" || fail "Space should fly through the dataset cameras"
+wait_title "fly-through - orbit - camera 1/2" || fail "the fly-through should go on to the next camera"
+xdotool key --window "$window" 3
+wait_title " SH 3 - .* - H: keys - orbit - camera" || fail "a key should stop the fly-through"
 
 # A drag turns the view (leaving the dataset camera), Tab switches to fly mode.
 xdotool mousemove --window "$window" 160 120 mousedown 1 mousemove --window "$window" 220 130 mouseup 1

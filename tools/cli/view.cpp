@@ -13,7 +13,7 @@ namespace vksplat::cli {
 namespace {
 
 struct ViewArgs {
-    std::string scene, cameras, size = "1024x768";
+    std::string scene, cameras, compare, size = "1024x768";
     std::vector<double> up;
     std::vector<float> background{0, 0, 0};
     bool validation = false;
@@ -24,6 +24,7 @@ int run_view(const ViewArgs& args) {
     viewer::ViewerOptions options;
     options.scene = args.scene;
     options.cameras = args.cameras;
+    options.compare = args.compare;
     if (!args.up.empty()) options.up = std::array<double, 3>{args.up[0], args.up[1], args.up[2]};
     if (std::sscanf(args.size.c_str(), "%dx%d", &options.width, &options.height) != 2 || options.width < 1 ||
         options.height < 1)
@@ -46,7 +47,8 @@ void register_view(CLI::App& app, Action& action) {
     command->footer(
         "Mouse: left drag turns (orbit about the focus point, or the view in fly mode), right or shift+left\n"
         "drag pans, wheel zooms. Keys: Tab or F switches orbit/fly, W A S D Q E fly, N/right and P/left step\n"
-        "through the dataset cameras, +/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
+        "through the dataset cameras, Space flies through them, B shows the --compare scene and back,\n"
+        "+/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
         "folder, never replacing a file), H prints the keys, Esc quits. The title shows the frame time and SH degree.\n"
         "Without --cameras, a cameras.json beside the scene (a trainer's output folder) gives the up direction\n"
         "and the dataset cameras.\n"
@@ -55,6 +57,9 @@ void register_view(CLI::App& app, Action& action) {
     command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
         ->check(CLI::ExistingPath);
+    command->add_option("--compare", args->compare,
+                        "a second scene (e.g. a pruned copy) that B switches to and back, from the same view")
+        ->check(CLI::ExistingFile);
     command->add_option("--up", args->up, "the world's up direction X,Y,Z (default: from the cameras, or those of a cameras.json beside the scene, else +z)")
         ->delimiter(',')
         ->expected(3)

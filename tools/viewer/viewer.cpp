@@ -6,7 +6,10 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <glm/gtc/quaternion.hpp>
+#include <cmath>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "glfw_window.hpp"
@@ -24,7 +27,24 @@ namespace {
 // What the keys do: printed by H and at the start, named in the title.
 constexpr const char* kKeys =
     "keys: Tab/F orbit or fly | W A S D Q E fly | N/right, P/left the next or previous dataset camera | "
-    "+/- zoom | 0 1 2 3 SH degree | C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
+    "+/- zoom | Space fly through the dataset cameras | B the --compare scene and back | 0 1 2 3 SH degree | "
+    "C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
+
+// Seconds the fly-through takes from one dataset camera to the next.
+constexpr double kFlySeconds = 1.5;
+
+// The camera a fraction t of the way from a to b: centre along the line, rotation along the
+// shortest arc, focal lengths in between; a's picture size.
+Camera between(const Camera& a, const Camera& b, double t) {
+    Camera c = a;
+    const glm::dquat q = glm::slerp(glm::quat_cast(a.rotation), glm::quat_cast(b.rotation), t);
+    c.rotation = glm::mat3_cast(q);
+    const glm::dvec3 centre = glm::mix(a.centre(), b.centre(), t);
+    c.translation = -(c.rotation * centre);
+    c.fx = glm::mix(a.fx, b.fx * a.width / b.width, t);
+    c.fy = glm::mix(a.fy, b.fy * a.height / b.height, t);
+    return c;
+}
 
 // The first vksplat_view_NNN.png in the current folder that does not exist yet, so that a
 // screenshot never replaces a file.
@@ -75,7 +95,8 @@ struct FrameSync {
 
 class Viewer {
 public:
-    Viewer(const ViewerOptions& options, GaussianCloud cloud, std::vector<Camera> cameras)
+    Viewer(const ViewerOptions& options, GaussianCloud cloud, std::vector<Camera> cameras,
+           std::optional<GaussianCloud> compare)
         : options_(options),
           cameras_(std::move(cameras)),
           window_(options.width, options.height, "vksplat view", options.validation),
@@ -85,6 +106,12 @@ public:
           controls_(start_controls(cloud)) {
         gaussians_ = cloud.size();
         renderer_.set_scene(cloud);
+        // A renderer of its own, so that B switches at once, without uploading a scene again.
+        if (compare) {
+            compare_renderer_ = std::make_unique<Renderer>(context_);
+            compare_renderer_->set_scene(*compare);
+            compare_gaussians_ = compare->size();
+        }
         settings_.background = options.background;
         if (!cameras_.empty()) show_dataset_camera(0);
         glfwSetWindowUserPointer(window_.window(), this);
@@ -115,11 +142,12 @@ public:
         auto last = std::chrono::steady_clock::now();
         while (!glfwWindowShouldClose(window_.window())) {
             // Redraw only when something changed: a CPU driver has better things to do.
-            if (dirty_ || flying()) glfwPollEvents(); else glfwWaitEvents();
+            if (dirty_ || flying() || touring_) glfwPollEvents(); else glfwWaitEvents();
             const auto now = std::chrono::steady_clock::now();
             const double seconds = std::chrono::duration<double>(now - last).count();
             last = now;
             fly(std::min(seconds, 0.1));
+            fly_through(seconds);
             int width = 0, height = 0;
             glfwGetFramebufferSize(window_.window(), &width, &height);
             if (width == 0 || height == 0 || !dirty_) continue;  // minimised, or nothing new
@@ -154,6 +182,18 @@ private:
         dirty_ = true;
     }
 
+    // Space: glides from dataset camera to dataset camera, kFlySeconds each, until a key or drag.
+    void fly_through(double seconds) {
+        if (!touring_ || cameras_.size() < 2) return;
+        tour_ += seconds / kFlySeconds;
+        const size_t n = cameras_.size();
+        const size_t from = size_t(tour_) % n;
+        controls_.jump_to(between(cameras_[from], cameras_[(from + 1) % n], tour_ - std::floor(tour_)),
+                          controls_.distance());
+        dataset_index_ = int(from);
+        dirty_ = true;
+    }
+
     void show_dataset_camera(int index) {
         dataset_index_ = (index % int(cameras_.size()) + int(cameras_.size())) % int(cameras_.size());
         controls_.jump_to(cameras_[size_t(dataset_index_)], controls_.distance());
@@ -162,6 +202,13 @@ private:
 
     void on_key(int key, int action, int) {
         if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+        if (key == GLFW_KEY_SPACE && action == GLFW_PRESS && cameras_.size() > 1) {
+            touring_ = !touring_;
+            tour_ = std::max(dataset_index_, 0);
+            dirty_ = true;
+            return;
+        }
+        touring_ = false;
         switch (key) {
             case GLFW_KEY_ESCAPE: glfwSetWindowShouldClose(window_.window(), GLFW_TRUE); break;
             case GLFW_KEY_TAB:
@@ -186,6 +233,10 @@ private:
             case GLFW_KEY_2:
             case GLFW_KEY_3: settings_.max_sh_degree = key - GLFW_KEY_0; break;
             case GLFW_KEY_C: screenshot(); return;
+            case GLFW_KEY_B:
+                if (!compare_renderer_) return;
+                showing_compare_ = !showing_compare_;
+                break;
             case GLFW_KEY_H: std::printf("%s\n", kKeys); std::fflush(stdout); return;
             default: return;
         }
@@ -195,7 +246,7 @@ private:
     // The view as it is on screen, rendered again at the window's size and written as a PNG.
     void screenshot() {
         const Camera camera = controls_.camera(int(extent_.width), int(extent_.height));
-        const RenderOutput out = renderer_.render(camera, settings_);
+        const RenderOutput out = shown().render(camera, settings_);
         const std::filesystem::path path = next_screenshot();
         io::write_png_rgb(path, out.width, out.height, out.rgb.data(), 8);
         std::printf("wrote %s (%dx%d)\n", std::filesystem::absolute(path).string().c_str(), out.width, out.height);
@@ -207,8 +258,11 @@ private:
         dataset_index_ = -1;
     }
 
+    Renderer& shown() { return showing_compare_ ? *compare_renderer_ : renderer_; }
+
     void on_button(int button, int action, int mods) {
         if (action == GLFW_PRESS) {
+            touring_ = false;
             dragging_ = button == GLFW_MOUSE_BUTTON_LEFT && !(mods & GLFW_MOD_SHIFT) ? Drag::rotate : Drag::pan;
             glfwGetCursorPos(window_.window(), &cursor_x_, &cursor_y_);
         } else {
@@ -265,7 +319,7 @@ private:
         begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
         check(vkBeginCommandBuffer(sync_.commands, &begin), "vkBeginCommandBuffer");
         const Camera camera = controls_.camera(int(extent_.width), int(extent_.height));
-        renderer_.record(sync_.commands, camera, settings_,
+        shown().record(sync_.commands, camera, settings_,
                          RenderTarget::to_image(swapchain_->images()[index], swapchain_->format(),
                                                 VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR));
         check(vkEndCommandBuffer(sync_.commands), "vkEndCommandBuffer");
@@ -314,8 +368,12 @@ private:
                                                       : "";
         // A CPU device draws a frame in seconds: frames per second with a decimal there, not "0 fps".
         const double fps = 1000.0 / ms;
-        std::snprintf(title, sizeof(title), "vksplat view - %s - %zu Gaussians - SH %d - %.1f ms (%.*f fps) - H: keys - %s%s",
-                      options_.scene.c_str(), gaussians_, settings_.max_sh_degree, ms, fps < 10 ? 1 : 0, fps,
+        const std::string& scene = showing_compare_ ? options_.compare : options_.scene;
+        const std::string which = compare_renderer_ ? (showing_compare_ ? "B: " : "A: ") : "";
+        std::snprintf(title, sizeof(title),
+                      "vksplat view - %s%s - %zu Gaussians - SH %d - %.1f ms (%.*f fps) - H: keys - %s%s%s", which.c_str(),
+                      scene.c_str(), showing_compare_ ? compare_gaussians_ : gaussians_, settings_.max_sh_degree, ms,
+                      fps < 10 ? 1 : 0, fps, touring_ ? "fly-through - " : "",
                       controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly", where.c_str());
         glfwSetWindowTitle(window_.window(), title);
     }
@@ -334,6 +392,11 @@ private:
     VkExtent2D extent_{};
     RenderSettings settings_;
     size_t gaussians_ = 0;
+    std::unique_ptr<Renderer> compare_renderer_;  // --compare's scene
+    size_t compare_gaussians_ = 0;
+    bool showing_compare_ = false;
+    bool touring_ = false;  // Space's fly-through
+    double tour_ = 0;       // dataset cameras passed since it started
     int dataset_index_ = -1;
     bool dirty_ = true;
     Drag dragging_ = Drag::none;
@@ -364,7 +427,13 @@ int run_viewer(const ViewerOptions& options) {
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     std::printf("%s\n", kKeys);
     std::fflush(stdout);
-    Viewer viewer(options, std::move(cloud), std::move(cameras));
+    std::optional<GaussianCloud> compare;
+    if (!options.compare.empty()) {
+        notes.clear();
+        compare = io::read_scene(options.compare, &notes);
+        for (const auto& note : notes) std::fprintf(stderr, "note: %s\n", note.c_str());
+    }
+    Viewer viewer(options, std::move(cloud), std::move(cameras), std::move(compare));
     return viewer.run();
 }
 

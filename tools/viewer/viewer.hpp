@@ -10,6 +10,7 @@ namespace vksplat::viewer {
 struct ViewerOptions {
     std::string scene;
     std::string cameras;                      // optional: dataset cameras to step through
+    std::string compare;                      // optional: a second scene B toggles to (e.g. a pruned copy)
     std::optional<std::array<double, 3>> up;  // world up; default from the cameras, else +z
     int width = 1024, height = 768;           // initial window size
     std::array<float, 3> background{0, 0, 0};
