@@ -150,12 +150,7 @@ double plain_render_seconds(Renderer& renderer, const GaussianCloud& cloud, cons
 size_t kept_count(size_t n, double fraction) { return n - size_t(std::llround(fraction * double(n))); }
 
 // "31.20 dB", or "identical" for an identical pair.
-std::string decibels(double psnr) {
-    if (std::isinf(psnr)) return "identical";
-    char text[32];
-    std::snprintf(text, sizeof(text), "%.2f dB", psnr);
-    return text;
-}
+std::string decibels(double psnr) { return std::isinf(psnr) ? "identical" : detail::psnr_text(psnr) + " dB"; }
 
 // One sheet: photo | unpruned | pruned | error vs unpruned | the window where that error is
 // largest, zoomed (unpruned above, pruned below; outlined on the pictures), each render under its

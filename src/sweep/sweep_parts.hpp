@@ -2,6 +2,7 @@
 // The pieces of the sweep job (sweep.cpp), one file each: measuring a model, the CSV files, the
 // charts and the report.
 #include <filesystem>
+#include <string>
 #include <vector>
 
 #include "vksplat/report/html_report.hpp"
@@ -32,6 +33,10 @@ struct SweepCharts {
     report::ReportImage sh;                  // per-view PSNR across SH degrees
 };
 SweepCharts write_sweep_charts(const std::filesystem::path& out_dir, const SweepResult& result, io::WriteMode mode);
+
+// A PSNR as the report and the sheets print it: "31.20", or "identical" for +infinity (an identical
+// pair; sweep.csv keeps "inf" for programs) (sweep_report.cpp).
+std::string psnr_text(double psnr);
 
 // report.html in out_dir (sweep_report.cpp).
 void write_sweep_report(const std::filesystem::path& path, const SweepResult& result, const SweepOptions& options,

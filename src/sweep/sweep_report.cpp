@@ -60,24 +60,20 @@ void add_summary(report::HtmlReport& report, const SweepResult& result, const Sw
             format("%.1f", result.cluster_seconds) + " s.");
 }
 
-// A render identical to the unpruned one has PSNR +infinity against it: said in words (sweep.csv
-// keeps "inf" for programs).
-std::string psnr_vs_unpruned(double psnr) { return std::isinf(psnr) ? "identical" : format("%.2f", psnr); }
-
 std::string spread(const ModelMeasure& m) { return format("%.2f", m.ms_min) + " – " + format("%.2f", m.ms_max); }
 
 void add_table(report::HtmlReport& report, const SweepResult& result) {
     std::vector<std::vector<std::string>> rows;
     const ModelMeasure& u = result.unpruned;
     rows.push_back({"unpruned", "-", "0", std::to_string(u.gaussians), megabytes(u.bytes), format("%.3f", u.psnr),
-                    "0", format("%.4f", u.ssim), psnr_vs_unpruned(u.psnr_vs_unpruned), "1",
+                    "0", format("%.4f", u.ssim), psnr_text(u.psnr_vs_unpruned), "1",
                     format("%.2f", u.ms_per_frame), spread(u), "-"});
     for (const SweepRow& row : result.rows) {
         const ModelMeasure& m = row.measure;
         rows.push_back({row.method, fraction_label(row.fraction),
                         format("%.4f", row.dropped), std::to_string(m.gaussians), megabytes(m.bytes),
                         format("%.3f", m.psnr), format("%+.3f", row.delta_psnr), format("%.4f", m.ssim),
-                        psnr_vs_unpruned(m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
+                        psnr_text(m.psnr_vs_unpruned), format("%.4f", m.ssim_vs_unpruned),
                         format("%.2f", m.ms_per_frame), spread(m),
                         row.recover_iterations ? format("%.1f", row.recover_seconds) : std::string("-")});
     }
@@ -131,6 +127,8 @@ void add_sheets(report::HtmlReport& report, const SweepResult& result, const Swe
 }
 
 }  // namespace
+
+std::string psnr_text(double psnr) { return std::isinf(psnr) ? "identical" : format("%.2f", psnr); }
 
 void write_sweep_report(const std::filesystem::path& path, const SweepResult& result, const SweepOptions& options,
                         const SweepCharts& charts, io::WriteMode mode) {
