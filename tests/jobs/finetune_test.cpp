@@ -75,7 +75,7 @@ TEST_F(Finetune, RefusesOutputsThatAreInputsOrCannotBeWrittenBeforeAnyStep) {
     refused(o, {input.string(), "writing over an input is refused"});
     o = options;
     o.out = scratch / "refit.xyz";
-    refused(o, {"refit.xyz", "unknown scene file extension"});
+    refused(o, {"refit.xyz", "cannot write a scene as '.xyz'"});
     o = options;
     o.out = scratch / "no_such_folder" / "refit.ply";
     refused(o, {"refit.ply", "does not exist"});
