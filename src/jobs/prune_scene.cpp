@@ -12,7 +12,6 @@
 #include "vksplat/io/formats.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
-#include "vksplat/prune/sh_reduction.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -136,21 +135,6 @@ PhotoSource recover_photos(const PruneOptions& options) {
     return photos_in_folder(*options.images_dir, options.settings.background);
 }
 
-// The model a size budget chose (`keep` of `cloud`, scored by `scores`), re-fitted: the SH bands it
-// had dropped are dropped again, and its least Gaussians go until its file fits the budget again.
-GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, const prune::KeepMask& keep,
-                           const std::vector<float>& scores, const prune::SizeBudget& budget) {
-    const GaussianCloud reduced = prune::with_sh_degrees(refitted, prune::sh_degrees_in_use(chosen));
-    std::vector<float> kept_scores;
-    for (size_t i = 0; i < keep.size(); ++i)
-        if (keep[i]) kept_scores.push_back(scores[i]);
-    const prune::Ranking ranking(kept_scores, prune::keep_all(reduced.size()));
-    const size_t kept = prune::largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
-        return prune::scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
-    });
-    return kept == reduced.size() ? reduced : reduced.subset(ranking.keep_best(kept));
-}
-
 // Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
 // measured; with a size budget, the model chosen is re-fitted; otherwise the selector's count is
 // reached in the rounds asked for.
@@ -186,7 +170,10 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         const GaussianCloud refitted =
             finetune_scene(context, chosen, cameras, photos, finetune, {}, [&](const train::LoopStatus& s) { report(1, s); })
                 .cloud;
-        return fit_refitted(chosen, refitted, result.budget->keep, scored.scores, *size);
+        std::vector<float> chosen_scores;
+        for (size_t i = 0; i < result.budget->keep.size(); ++i)
+            if (result.budget->keep[i]) chosen_scores.push_back(scored.scores[i]);
+        return prune::fit_refitted(chosen, refitted, chosen_scores, *size);
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
     RecoverResult recovered = prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos, recover,

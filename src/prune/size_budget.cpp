@@ -90,6 +90,18 @@ void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budge
                          megabytes(bytes) + " MB) as " + budget.format);
 }
 
+GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, std::span<const float> scores,
+                           const SizeBudget& budget) {
+    if (refitted.size() != chosen.size() || scores.size() != chosen.size())
+        throw std::invalid_argument("prune::fit_refitted: the re-fitted model or the scores are not of the chosen one");
+    const GaussianCloud reduced = with_sh_degrees(refitted, sh_degrees_in_use(chosen));
+    const Ranking ranking(scores, keep_all(reduced.size()));
+    const size_t kept = largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
+        return scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
+    });
+    return kept == reduced.size() ? reduced : reduced.subset(ranking.keep_best(kept));
+}
+
 BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, const Ranking& ranking,
                              std::span<const double> weights, const eval::TestViews& views, const SizeBudget& budget,
                              const RenderSettings& settings, const std::function<void(const BudgetProbe&)>& on_probe) {

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <stdexcept>
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
@@ -10,6 +11,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/sh_reduction.hpp"
 #include "vksplat/prune/size_budget.hpp"
 
 namespace vksplat::test {
@@ -41,6 +43,36 @@ TEST(SceneFileBytes, AreTheBytesTheWriterWrites) {
         EXPECT_EQ(prune::scene_file_bytes(cloud, format), fs::file_size(path)) << format;
     }
     fs::remove_all(dir);
+}
+
+TEST(FitRefitted, DropsTheChosenBandsAgainAndItsLeastGaussiansUntilItFits) {
+    const GaussianCloud scene = random_scene(93, 300, 3);
+    std::vector<uint8_t> degrees(scene.size());
+    for (size_t i = 0; i < degrees.size(); ++i) degrees[i] = uint8_t(i % 4);
+    const GaussianCloud chosen = prune::with_sh_degrees(scene, degrees);
+    // A re-fit moves every value: the dropped bands get colour back, positions move.
+    GaussianCloud refitted = chosen;
+    for (size_t f = 0; f < refitted.sh.size(); ++f) refitted.sh[f] += f % 2 ? 0.05f : -0.05f;
+    for (float& p : refitted.positions) p += 0.001f;
+    std::vector<float> scores(scene.size());
+    for (size_t i = 0; i < scores.size(); ++i) scores[i] = float((i * 37) % 300);
+
+    prune::SizeBudget budget;
+    budget.format = "spz";
+    budget.max_bytes = prune::scene_file_bytes(chosen, "spz") * 2;
+    const GaussianCloud roomy = prune::fit_refitted(chosen, refitted, scores, budget);
+    EXPECT_EQ(roomy.size(), chosen.size());
+    EXPECT_EQ(prune::sh_degrees_in_use(roomy), degrees) << "the dropped bands stay dropped";
+    EXPECT_EQ(roomy.positions, refitted.positions);
+
+    budget.max_bytes = prune::scene_file_bytes(chosen, "spz") / 2;
+    const GaussianCloud tight = prune::fit_refitted(chosen, refitted, scores, budget);
+    EXPECT_LE(prune::scene_file_bytes(tight, "spz"), budget.max_bytes);
+    EXPECT_LT(tight.size(), chosen.size());
+    EXPECT_GT(tight.size(), chosen.size() / 4);
+    const prune::KeepMask best = prune::Ranking(scores, prune::keep_all(scores.size())).keep_best(tight.size());
+    EXPECT_EQ(tight.positions, prune::with_sh_degrees(refitted, degrees).subset(best).positions) << "the best kept";
+    EXPECT_THROW(prune::fit_refitted(chosen, refitted.subset(best), scores, budget), std::invalid_argument);
 }
 
 class SizeBudget : public GpuTest {

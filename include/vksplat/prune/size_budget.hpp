@@ -37,6 +37,14 @@ size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t
 // there can be: one Gaussian at SH degree 0, or an empty cloud) fits the budget as its format.
 void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budget);
 
+// The model a size budget chose, after a re-fit: `refitted` (the same Gaussians as `chosen`, in the
+// same order) with the SH bands `chosen` had dropped dropped again, since the re-fit gives them
+// colour back that the file would pay for; then, if its file no longer fits (re-fitted values
+// compress less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit.
+// Throws std::invalid_argument when the sizes differ.
+GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, std::span<const float> scores,
+                           const SizeBudget& budget);
+
 // `cloud` is the unpruned scene, `ranking` orders its candidates, `weights` (empty, or one per
 // Gaussian of `cloud`: prune::ViewTotals::blend) say what SH bands cost (sh_reduction.hpp). The
 // result's model is the one chosen and `probes` hold each choice's measured model. Throws
