@@ -42,6 +42,15 @@ if [ "$mode" = test ] && ! grep -qs "\"version\": \"$splat_transform_version\"" 
     "@playcanvas/splat-transform@$splat_transform_version"
 fi
 
+# The Khronos glTF validator, pinned, beside it (tests/io/gltf_validator_test.sh looks there).
+gltf_validator_version=2.0.0-dev.3.10
+if [ "$mode" = test ] && ! grep -qs "\"version\": \"$gltf_validator_version\"" \
+    "$root/.npm-tools/node_modules/gltf-validator/package.json"; then
+  echo "installing gltf-validator@$gltf_validator_version into .npm-tools/"
+  npm install --prefix "$root/.npm-tools" --no-audit --no-fund --ignore-scripts --silent \
+    "gltf-validator@$gltf_validator_version"
+fi
+
 cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
 cmake --build "$build" -j"$(nproc)"
 

@@ -13,8 +13,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr const char* kSupportedExtensions = ".ply, .splat, .spz, .sog, meta.json (SOG), .pt, .pth";
-constexpr const char* kWritableExtensions = ".ply, .compressed.ply, .splat, .spz, .sog, meta.json (SOG)";
+constexpr const char* kSupportedExtensions = ".ply, .splat, .spz, .sog, meta.json (SOG), .glb, .pt, .pth";
+constexpr const char* kWritableExtensions = ".ply, .compressed.ply, .splat, .spz, .sog, meta.json (SOG), .glb";
 
 std::string lowercase(std::string text) {
     std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::tolower(c); });
@@ -35,6 +35,7 @@ std::optional<std::string> format_by_extension(const fs::path& path) {
     if (extension == ".splat") return "splat";
     if (extension == ".spz") return "spz";
     if (extension == ".sog" || detail::sog::is_meta_json(path)) return "sog";
+    if (extension == ".glb") return "gltf";
     if (extension == ".pt" || extension == ".pth") return "gsplat-pt";
     return std::nullopt;
 }
@@ -49,6 +50,9 @@ std::string scene_format_named(const fs::path& path, const std::string& format) 
     if (format.empty()) {
         if (const auto named = format_by_extension(path)) return *named;
         const std::string extension = lowercase(path.extension().string());
+        if (extension == ".gltf")
+            throw InputError(path.string(), "glTF as JSON with separate buffers (.gltf) is not supported; "
+                                            "use binary glTF (.glb)");
         throw InputError(path.string(), (extension.empty() ? std::string("has no extension")
                                                            : "unknown scene file extension '" + extension + "'") +
                                             "; supported: " + kSupportedExtensions + " (or name the format: " +
@@ -62,7 +66,7 @@ std::string scene_format_named(const fs::path& path, const std::string& format) 
 }
 
 std::vector<std::string> scene_formats() {
-    return {"ply", "compressed-ply", "splat", "spz", "spz-v4", "sog", "gsplat-pt"};
+    return {"ply", "compressed-ply", "splat", "spz", "spz-v4", "sog", "gltf", "gsplat-pt"};
 }
 
 std::string scene_format_of(const fs::path& path) {
@@ -81,12 +85,13 @@ GaussianCloud read_scene(const fs::path& path, std::vector<std::string>* notes, 
     if (name == "splat") return read_splat(path, notes);
     if (name == "spz" || name == "spz-v4") return read_spz(path, notes);
     if (name == "sog") return read_sog(path, notes);
+    if (name == "gltf") return read_gltf(path, notes);
     return read_gsplat_checkpoint(path, notes);
 }
 
 std::string check_scene_writable(const fs::path& path, WriteMode mode, const std::string& format) {
     const std::string writable = std::string("; the scene formats vksplat writes are ") + kWritableExtensions +
-                                 " (or by name: ply, compressed-ply, splat, spz, spz-v4, sog)";
+                                 " (or by name: ply, compressed-ply, splat, spz, spz-v4, sog, gltf)";
     if (format.empty()) {
         const auto named = format_by_extension(path);
         const std::string extension = path.extension().string();
@@ -111,6 +116,7 @@ void write_scene(const GaussianCloud& cloud, const fs::path& path, WriteMode mod
     if (name == "compressed-ply") return write_compressed_ply(cloud, path, mode);
     if (name == "splat") return write_splat(cloud, path, mode);
     if (name == "sog") return write_sog(cloud, path, mode);
+    if (name == "gltf") return write_gltf(cloud, path, mode);
     return write_spz(cloud, path, mode, name == "spz-v4" ? 4 : 3);
 }
 

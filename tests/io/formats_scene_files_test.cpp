@@ -19,7 +19,7 @@ GaussianCloud tame_cloud(size_t count, int sh_degree) {
 
 TEST(FormatsSceneFiles, FormatsAreListed) {
     EXPECT_EQ(scene_formats(),
-              (std::vector<std::string>{"ply", "compressed-ply", "splat", "spz", "spz-v4", "sog", "gsplat-pt"}));
+              (std::vector<std::string>{"ply", "compressed-ply", "splat", "spz", "spz-v4", "sog", "gltf", "gsplat-pt"}));
 }
 
 TEST(FormatsSceneFiles, ExtensionChoosesTheFormat) {
@@ -32,11 +32,12 @@ TEST(FormatsSceneFiles, ExtensionChoosesTheFormat) {
     EXPECT_EQ(scene_format_of(dir / "a.SPZ"), "spz");
     EXPECT_EQ(scene_format_of(dir / "a.pt"), "gsplat-pt");
     EXPECT_EQ(scene_format_of(dir / "a.pth"), "gsplat-pt");
+    EXPECT_EQ(scene_format_of(dir / "a.glb"), "gltf");
     EXPECT_EQ(scene_format_of(dir / "a.Sog"), "sog");
     EXPECT_EQ(scene_format_of(dir / "META.json"), "sog");
     expect_input_error([&] { scene_format_of(dir / "cameras.json"); }, {"cameras.json", "'.json'"});
     expect_input_error([&] { scene_format_of(dir / "a.obj"); },
-                       {"a.obj", "unknown scene file extension '.obj'", ".ply, .splat, .spz, .sog, meta.json (SOG), .pt"});
+                       {"a.obj", "unknown scene file extension '.obj'", ".ply, .splat, .spz, .sog, meta.json (SOG), .glb, .pt"});
     expect_input_error([&] { scene_format_of(dir / "noext"); }, {"noext", "has no extension", ".ply"});
 }
 
@@ -93,12 +94,12 @@ TEST(FormatsSceneFiles, ExplicitFormatOverridesTheExtension) {
 TEST(FormatsSceneFiles, UnknownNamesAndReadOnlyFormatsAreRefused) {
     ScratchDir dir;
     const GaussianCloud cloud = tame_cloud(2, 0);
-    const std::string writable = ".ply, .compressed.ply, .splat, .spz, .sog, meta.json (SOG)";
+    const std::string writable = ".ply, .compressed.ply, .splat, .spz, .sog, meta.json (SOG), .glb";
     expect_input_error([&] { write_scene(cloud, dir / "scene.obj"); },
                        {"scene.obj", "cannot write a scene as '.obj'", writable});
     expect_input_error([&] { check_scene_writable(dir / "noext"); }, {"noext", "without an extension", writable});
     expect_input_error([&] { write_scene(cloud, dir / "scene.ply", WriteMode::refuse_existing, "ksplat"); },
-                       {"scene.ply", "unknown scene format 'ksplat'", "ply, compressed-ply, splat, spz, spz-v4, sog, gsplat-pt"});
+                       {"scene.ply", "unknown scene format 'ksplat'", "ply, compressed-ply, splat, spz, spz-v4, sog, gltf, gsplat-pt"});
     expect_input_error([&] { write_scene(cloud, dir / "scene.pt"); },
                        {"scene.pt", "cannot write format 'gsplat-pt'", "read-only", writable});
     expect_input_error([&] { write_scene(cloud, dir / "scene.ply", WriteMode::refuse_existing, "gsplat-pt"); },

@@ -34,7 +34,8 @@ void register_convert(CLI::App& app, Action& action) {
     command->footer(
         "Formats: ply (INRIA 3DGS), compressed-ply (PlayCanvas, *.compressed.ply), splat (antimatter15),\n"
         "spz (Niantic; written as version 3, or 4 with --format spz-v4) and sog (PlayCanvas SOG: a .sog zip,\n"
-        "or a folder's meta.json beside its WebP textures) are read and written; gsplat-pt\n"
+        "or a folder's meta.json beside its WebP textures) and gltf (binary glTF, .glb, with\n"
+        "KHR_gaussian_splatting) are read and written; gsplat-pt\n"
         "(gsplat checkpoint) is read only. The extension picks the format unless --format (output) or\n"
         "--input-format names it; a .ply is read as its header says.\n"
         "Example:\n  vksplat convert point_cloud.ply scene.spz\n  vksplat convert point_cloud.ply scene.compressed.ply\n"

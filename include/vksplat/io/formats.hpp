@@ -11,6 +11,7 @@
 //   "spz-v4"          (name only)      yes   yes    the same, written as version 4 (zstd)
 //   "sog"             .sog, meta.json  yes   yes    PlayCanvas SOG: WebP textures and a meta.json, zipped
 //                                                   (.sog) or in a folder (a path named meta.json)
+//   "gltf"            .glb             yes   yes    binary glTF 2.0 with KHR_gaussian_splatting (draft)
 //   "gsplat-pt"       .pt .pth         yes   no     gsplat checkpoint saved by torch.save (zip + pickle)
 //
 // SPZ is written as version 3 unless version 4 is asked for, although Niantic's library and
@@ -93,6 +94,23 @@ GaussianCloud read_sog(const std::filesystem::path& path, std::vector<std::strin
 // values or a quaternion of length 0.
 void write_sog(const GaussianCloud& cloud, const std::filesystem::path& path,
                WriteMode mode = WriteMode::refuse_existing);
+
+// ---- binary glTF (.glb) with KHR_gaussian_splatting -------------------------------------------
+// One mesh primitive of mode POINTS: POSITION, the extension's ROTATION (unit quaternion, glTF's
+// x, y, z, w order), SCALE (linear), OPACITY (after the sigmoid) and SH_DEGREE_l_COEF_m (the raw
+// f_dc and f_rest, all floats), and COLOR_0 (bytes: the DC colour, decoded from sRGB as glTF's
+// linear vertex colours are, and the opacity) for viewers without the extension. Axes: glTF's
+// (y up, z forward), which the extension asks for and splat-transform 2.x writes, turned half a
+// turn about z from the PLY's (x, y, the quaternion's x and y and the SH odd in them change
+// sign), with no node transform; reading turns them back.
+// Reading takes every primitive with the extension (float or, where the extension allows, normalised
+// integer attributes, joined into one cloud); refuses node transforms, sparse or external data,
+// and kernels other than "ellipse". .gltf (JSON with external buffers) is neither read nor written.
+GaussianCloud read_gltf(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+// Throws InputError for an empty cloud, non-finite positions, quaternions of length 0, or more
+// than the GLB's 4 GiB.
+void write_gltf(const GaussianCloud& cloud, const std::filesystem::path& path,
+                WriteMode mode = WriteMode::refuse_existing);
 
 // ---- gsplat checkpoint .pt (read only) --------------------------------------------------------
 // A torch.save zip archive whose pickle holds {"splats": {means [N,3], quats [N,4] (w,x,y,z),
