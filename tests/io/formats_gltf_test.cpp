@@ -265,6 +265,16 @@ TEST(FormatsGltf, DamagedFilesAreRefusedNamingTheFileAndTheProblem) {
     expect_input_error([&] { write_scene(cloud, dir / "scene.gltf"); }, {"scene.gltf", ".glb"});
 }
 
+TEST(FormatsGltf, OpacitiesThatRoundToOneComeBackAtTheClamp) {
+    ScratchDir dir;
+    GaussianCloud cloud = random_cloud(2, 0, 4);
+    cloud.opacity_logits = {17.0f, 20.0f};  // sigmoid(17) is still below 1 as a float, sigmoid(20) is not
+    write_gltf(cloud, dir / "opaque.glb");
+    const GaussianCloud back = read_gltf(dir / "opaque.glb");
+    EXPECT_NEAR(back.opacity_logits[0], 17.0f, 0.5f);
+    EXPECT_EQ(back.opacity_logits[1], kMaxOpacityLogit);
+}
+
 TEST(FormatsGltf, WriterRefusesWhatGltfCannotHold) {
     ScratchDir dir;
     GaussianCloud cloud = random_cloud(2, 0, 3);

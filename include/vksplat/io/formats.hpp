@@ -107,6 +107,9 @@ void write_sog(const GaussianCloud& cloud, const std::filesystem::path& path,
 // integer attributes, joined into one cloud); refuses node transforms, sparse or external data,
 // and kernels other than "ellipse". .gltf (JSON with external buffers) is neither read nor written.
 GaussianCloud read_gltf(const std::filesystem::path& path, std::vector<std::string>* notes = nullptr);
+// Round trip: positions and SH exact; log scales within 1e-6; opacity within float rounding after
+// the sigmoid (so logits above about 17.3, whose opacity rounds to 1, come back as
+// kMaxOpacityLogit); quaternions normalised. COLOR_0 is not read back (SH_DEGREE_0 is the colour).
 // Throws InputError for an empty cloud, non-finite positions, quaternions of length 0, or more
 // than the GLB's 4 GiB.
 void write_gltf(const GaussianCloud& cloud, const std::filesystem::path& path,
