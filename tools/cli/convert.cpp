@@ -33,7 +33,7 @@ void register_convert(CLI::App& app, Action& action) {
     auto* command = app.add_subcommand("convert", "rewrite a scene file in another format");
     command->footer(
         "Formats: ply (INRIA 3DGS), compressed-ply (PlayCanvas, *.compressed.ply), splat (antimatter15),\n"
-        "spz (Niantic; written as version 3, or 4 with --format spz-v4) and sog (PlayCanvas SOG: a .sog zip,\n"
+        "spz (Niantic; written as version 3, or 4 with --format spz-v4), sog (PlayCanvas SOG: a .sog zip,\n"
         "or a folder's meta.json beside its WebP textures) and gltf (binary glTF, .glb, with\n"
         "KHR_gaussian_splatting) are read and written; gsplat-pt\n"
         "(gsplat checkpoint) is read only. The extension picks the format unless --format (output) or\n"
