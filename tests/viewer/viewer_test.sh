@@ -146,6 +146,26 @@ wait_title " fly$" || fail "Tab should switch to fly mode"
 import -window "$window" "$work/after_drag.png"
 expect_mean "$work/after_drag.png" 320x240+0+0 ">" 0.03 "scene still in view after the drag"
 
+# V draws the dataset cameras' frustums into the scene (yellow splats), V again takes them away;
+# seen from further back, where both cameras are in view.
+xdotool key --window "$window" Tab
+wait_title " orbit$" || fail "Tab should switch back to orbit mode"
+for _ in 1 2 3 4 5 6 7 8; do xdotool key --window "$window" minus; done
+xdotool key --window "$window" v
+if wait_title "frustums - orbit$"; then
+  import -window "$window" "$work/frustums.png"
+  xdotool key --window "$window" v
+  if wait_title "H: keys - orbit$"; then
+    import -window "$window" "$work/far.png"
+    differing=$(compare -metric AE "$work/far.png" "$work/frustums.png" null: 2>&1)
+    [ "${differing%%.*}" -gt 50 ] 2>/dev/null || fail "V should draw the frustums ($differing pixels differ)"
+  else
+    fail "V again should hide the frustums"
+  fi
+else
+  fail "V should show the frustums"
+fi
+
 xdotool key --window "$window" Escape
 status=
 for _ in $(seq 300); do

@@ -47,8 +47,8 @@ void register_view(CLI::App& app, Action& action) {
     command->footer(
         "Mouse: left drag turns (orbit about the focus point, or the view in fly mode), right or shift+left\n"
         "drag pans, wheel zooms. Keys: Tab or F switches orbit/fly, W A S D Q E fly, N/right and P/left step\n"
-        "through the dataset cameras, Space flies through them, B shows the --compare scene and back,\n"
-        "+/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
+        "through the dataset cameras, Space flies through them, V shows their frustums, B shows the --compare\n"
+        "scene and back, +/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
         "folder, never replacing a file), H prints the keys, Esc quits. The title shows the frame time and SH degree.\n"
         "Without --cameras, a cameras.json beside the scene (a trainer's output folder) gives the up direction\n"
         "and the dataset cameras.\n"

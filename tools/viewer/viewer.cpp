@@ -12,6 +12,7 @@
 #include <optional>
 #include <vector>
 
+#include "frustum_splats.hpp"
 #include "glfw_window.hpp"
 #include "swapchain.hpp"
 #include "vksplat/camera/camera_controls.hpp"
@@ -27,7 +28,8 @@ namespace {
 // What the keys do: printed by H and at the start, named in the title.
 constexpr const char* kKeys =
     "keys: Tab/F orbit or fly | W A S D Q E fly | N/right, P/left the next or previous dataset camera | "
-    "+/- zoom | Space fly through the dataset cameras | B the --compare scene and back | 0 1 2 3 SH degree | "
+    "+/- zoom | Space fly through the dataset cameras | V their frustums | B the --compare scene and back | "
+    "0 1 2 3 SH degree | "
     "C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
 
 // Seconds the fly-through takes from one dataset camera to the next.
@@ -106,6 +108,14 @@ public:
           controls_(start_controls(cloud)) {
         gaussians_ = cloud.size();
         renderer_.set_scene(cloud);
+        // Frustums a twentieth of the first view's distance deep, edges a hundredth of that thick.
+        if (!cameras_.empty()) {
+            const double depth = controls_.distance() / 20.0;
+            with_frustums_ = cloud;
+            const GaussianCloud frustums = frustum_splats(cameras_, depth, depth / 100.0, cloud.sh_degree);
+            for (size_t i = 0; i < frustums.size(); ++i) with_frustums_.append(frustums, i);
+            scene_ = std::move(cloud);
+        }
         // A renderer of its own, so that B switches at once, without uploading a scene again.
         if (compare) {
             compare_renderer_ = std::make_unique<Renderer>(context_);
@@ -233,6 +243,11 @@ private:
             case GLFW_KEY_2:
             case GLFW_KEY_3: settings_.max_sh_degree = key - GLFW_KEY_0; break;
             case GLFW_KEY_C: screenshot(); return;
+            case GLFW_KEY_V:
+                if (cameras_.empty()) return;
+                showing_frustums_ = !showing_frustums_;
+                renderer_.set_scene(showing_frustums_ ? with_frustums_ : scene_);
+                break;
             case GLFW_KEY_B:
                 if (!compare_renderer_) return;
                 showing_compare_ = !showing_compare_;
@@ -373,7 +388,7 @@ private:
         std::snprintf(title, sizeof(title),
                       "vksplat view - %s%s - %zu Gaussians - SH %d - %.1f ms (%.*f fps) - H: keys - %s%s%s", which.c_str(),
                       scene.c_str(), showing_compare_ ? compare_gaussians_ : gaussians_, settings_.max_sh_degree, ms,
-                      fps < 10 ? 1 : 0, fps, touring_ ? "fly-through - " : "",
+                      fps < 10 ? 1 : 0, fps, showing_frustums_ ? "frustums - " : touring_ ? "fly-through - " : "",
                       controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly", where.c_str());
         glfwSetWindowTitle(window_.window(), title);
     }
@@ -392,6 +407,8 @@ private:
     VkExtent2D extent_{};
     RenderSettings settings_;
     size_t gaussians_ = 0;
+    GaussianCloud scene_, with_frustums_;  // with dataset cameras: the scene without and with V's frustums
+    bool showing_frustums_ = false;
     std::unique_ptr<Renderer> compare_renderer_;  // --compare's scene
     size_t compare_gaussians_ = 0;
     bool showing_compare_ = false;
