@@ -144,6 +144,7 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
             result.model = std::move(model);
             result.kept = p.kept;
             result.sh_degree = p.sh_degree;
+            result.sh_share = p.sh_share;
             result.psnr = p.psnr;
             result.drop = p.drop;
         }

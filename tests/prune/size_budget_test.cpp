@@ -111,6 +111,11 @@ TEST_F(SizeBudget, KeepsTheBestModelThatFitsTradingCountAgainstBands) {
         per_gaussian |= probe.sh_share > 0 && probe.sh_share < 1;
     }
     EXPECT_TRUE(per_gaussian);
+    for (const auto& probe : small.probes) {
+        if (probe.drop == small.drop) {
+            EXPECT_EQ(probe.sh_share, small.sh_share) << "the share of the model chosen";
+        }
+    }
     EXPECT_GT(small.probes.back().kept, small.probes.front().kept) << "fewer bands, more Gaussians";
 
     const prune::BudgetResult larger = fit(whole / 2, "spz");

@@ -66,9 +66,12 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
     const double kept = result.count_before ? 100.0 * double(result.count_after) / double(result.count_before) : 0.0;
     std::printf("Gaussians: %zu -> %zu (%.1f%% kept", result.count_before, result.count_after, kept);
     if (result.lossless_applied) std::printf("; the lossless pass dropped %zu", result.lossless_dropped);
-    std::printf(")\nsize: %zu bytes as PLY -> %zu bytes written (%.2f -> %.2f MB)\nSH degree: %d -> %d\n",
+    std::printf(")\nsize: %zu bytes as PLY -> %zu bytes written (%.2f -> %.2f MB)\nSH degree: %d -> %d",
                 result.bytes_before, result.bytes_after, double(result.bytes_before) / 1e6, double(result.bytes_after) / 1e6,
                 result.sh_degree_before, result.sh_degree_after);
+    if (result.budget && result.budget->sh_share > 0 && result.budget->sh_share < 1)
+        std::printf(" (%.0f%% of the higher bands dropped per Gaussian)", 100.0 * result.budget->sh_share);
+    std::printf("\n");
     if (result.budget && !result.budget->met)
         std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",
                     result.budget->drop);

@@ -47,6 +47,7 @@ struct BudgetResult {
     KeepMask keep;
     size_t kept = 0;
     int sh_degree = 0;
+    double sh_share = 0;       // of the higher bands, dropped per Gaussian (a size budget's choice)
     double baseline_psnr = 0;  // `cloud`'s mean PSNR against the photos; 0 without photos
     double psnr = 0, drop = 0; // of the model chosen
     // False when even every candidate (all the lossless pass left) misses the budget; the result
