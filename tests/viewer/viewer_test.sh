@@ -166,6 +166,26 @@ else
   fail "V should show the frustums"
 fi
 
+# M draws the Gaussians as dots, then as opaque ellipsoids, then as splats again; ] scales the
+# splats up and [ back.
+look() {  # KEY TITLE-PATTERN NAME: after KEY the title matches and the picture differs from far.png
+  xdotool key --window "$window" "$1"
+  if wait_title "$2"; then
+    import -window "$window" "$work/$3.png"
+    differing=$(compare -metric AE "$work/far.png" "$work/$3.png" null: 2>&1)
+    [ "${differing%%.*}" -gt 50 ] 2>/dev/null || fail "$3 should look different ($differing pixels differ)"
+  else
+    fail "$1 should show $3"
+  fi
+}
+look m "H: keys - points - orbit$" points
+look m "H: keys - ellipsoids - orbit$" ellipsoids
+xdotool key --window "$window" m
+wait_title "H: keys - orbit$" || fail "M a third time should draw splats again"
+look bracketright "H: keys - scale 1.25 - orbit$" scaled
+xdotool key --window "$window" bracketleft
+wait_title "H: keys - orbit$" || fail "[ should scale the splats back"
+
 xdotool key --window "$window" Escape
 status=
 for _ in $(seq 300); do

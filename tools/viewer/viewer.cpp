@@ -10,8 +10,10 @@
 #include <cmath>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "display_modes.hpp"
 #include "frustum_splats.hpp"
 #include "glfw_window.hpp"
 #include "swapchain.hpp"
@@ -29,7 +31,7 @@ namespace {
 constexpr const char* kKeys =
     "keys: Tab/F orbit or fly | W A S D Q E fly | N/right, P/left the next or previous dataset camera | "
     "+/- zoom | Space fly through the dataset cameras | V their frustums | B the --compare scene and back | "
-    "0 1 2 3 SH degree | "
+    "0 1 2 3 SH degree | [ ] splat scale | M splats, points or ellipsoids | "
     "C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
 
 // Seconds the fly-through takes from one dataset camera to the next.
@@ -108,14 +110,16 @@ public:
           controls_(start_controls(cloud)) {
         gaussians_ = cloud.size();
         renderer_.set_scene(cloud);
-        // Frustums a twentieth of the first view's distance deep, edges a hundredth of that thick.
+        // Frustums a twentieth of the first view's distance deep, edges a hundredth of that thick;
+        // dots for M's points a five-hundredth of it.
+        point_size_ = controls_.distance() / 500.0;
         if (!cameras_.empty()) {
             const double depth = controls_.distance() / 20.0;
             with_frustums_ = cloud;
             const GaussianCloud frustums = frustum_splats(cameras_, depth, depth / 100.0, cloud.sh_degree);
             for (size_t i = 0; i < frustums.size(); ++i) with_frustums_.append(frustums, i);
-            scene_ = std::move(cloud);
         }
+        scene_ = std::move(cloud);
         // A renderer of its own, so that B switches at once, without uploading a scene again.
         if (compare) {
             compare_renderer_ = std::make_unique<Renderer>(context_);
@@ -246,7 +250,16 @@ private:
             case GLFW_KEY_V:
                 if (cameras_.empty()) return;
                 showing_frustums_ = !showing_frustums_;
-                renderer_.set_scene(showing_frustums_ ? with_frustums_ : scene_);
+                upload_scene();
+                break;
+            case GLFW_KEY_LEFT_BRACKET:
+            case GLFW_KEY_RIGHT_BRACKET:
+                splat_scale_ *= key == GLFW_KEY_RIGHT_BRACKET ? 1.25 : 0.8;
+                upload_scene();
+                break;
+            case GLFW_KEY_M:
+                display_mode_ = next(display_mode_);
+                upload_scene();
                 break;
             case GLFW_KEY_B:
                 if (!compare_renderer_) return;
@@ -256,6 +269,15 @@ private:
             default: return;
         }
         dirty_ = true;
+    }
+
+    // The scene as the display mode, splat scale and frustum switch say (the frustums keep their
+    // own look, added after).
+    void upload_scene() {
+        GaussianCloud shown = display_cloud(scene_, display_mode_, splat_scale_, point_size_);
+        if (showing_frustums_)
+            for (size_t i = scene_.size(); i < with_frustums_.size(); ++i) shown.append(with_frustums_, i);
+        renderer_.set_scene(shown);
     }
 
     // The view as it is on screen, rendered again at the window's size and written as a PNG.
@@ -375,6 +397,17 @@ private:
         update_title(ms);
     }
 
+    // How the scene is drawn, when not as plain splats: "points - ", "scale 1.25 - ".
+    std::string look() const {
+        std::string text = display_mode_ == DisplayMode::splats ? "" : std::string(to_string(display_mode_)) + " - ";
+        if (std::abs(splat_scale_ - 1.0) > 1e-9) {
+            char scale[32];
+            std::snprintf(scale, sizeof(scale), "scale %.2f - ", splat_scale_);
+            text += scale;
+        }
+        return text;
+    }
+
     void update_title(double ms) {
         char title[256];
         const std::string where = dataset_index_ >= 0 ? " - camera " + std::to_string(dataset_index_ + 1) + "/" +
@@ -388,7 +421,7 @@ private:
         std::snprintf(title, sizeof(title),
                       "vksplat view - %s%s - %zu Gaussians - SH %d - %.1f ms (%.*f fps) - H: keys - %s%s%s", which.c_str(),
                       scene.c_str(), showing_compare_ ? compare_gaussians_ : gaussians_, settings_.max_sh_degree, ms,
-                      fps < 10 ? 1 : 0, fps, showing_frustums_ ? "frustums - " : touring_ ? "fly-through - " : "",
+                      fps < 10 ? 1 : 0, fps, (look() + (showing_frustums_ ? "frustums - " : touring_ ? "fly-through - " : "")).c_str(),
                       controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly", where.c_str());
         glfwSetWindowTitle(window_.window(), title);
     }
@@ -407,8 +440,12 @@ private:
     VkExtent2D extent_{};
     RenderSettings settings_;
     size_t gaussians_ = 0;
-    GaussianCloud scene_, with_frustums_;  // with dataset cameras: the scene without and with V's frustums
+    GaussianCloud scene_;          // as read
+    GaussianCloud with_frustums_;  // with dataset cameras: the scene, then V's frustums
     bool showing_frustums_ = false;
+    DisplayMode display_mode_ = DisplayMode::splats;
+    double splat_scale_ = 1.0;
+    double point_size_ = 0.01;
     std::unique_ptr<Renderer> compare_renderer_;  // --compare's scene
     size_t compare_gaussians_ = 0;
     bool showing_compare_ = false;
