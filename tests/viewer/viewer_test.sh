@@ -211,4 +211,31 @@ kill "$viewer_pid" 2>/dev/null
 wait "$viewer_pid" 2>/dev/null
 viewer_pid=
 
+# snowmiku opened as a user would, with no --cameras: its cameras.json beside the scene makes the
+# first frame its first camera's view, upright: it must look like the reference's golden render of
+# that camera far more than like the golden turned upside down. Where ../shared/data is absent,
+# this check is left out (the generated scenes above cover the rest).
+shared=${VKSPLAT_SHARED_DATA:-$(cd "$(dirname "$0")/../../.." && pwd)/shared/data}
+if [ -f "$shared/snowmiku/point_cloud.ply" ] && [ -f "$shared/snowmiku/cameras.json" ]; then
+  window=
+  "$vksplat" view "$shared/snowmiku/point_cloud.ply" --size 330x247 >"$work/view_snowmiku.log" 2>&1 &
+  viewer_pid=$!
+  if wait_title "camera 1/97"; then
+    import -window "$window" "$work/snowmiku.png"
+    convert "$shared/snowmiku/golden/00000.png" -resize 330x247! "$work/golden.png"
+    convert "$work/golden.png" -flip "$work/golden_flipped.png"
+    upright=$(compare -metric PSNR "$work/snowmiku.png" "$work/golden.png" null: 2>&1)
+    flipped=$(compare -metric PSNR "$work/snowmiku.png" "$work/golden_flipped.png" null: 2>&1)
+    awk -v u="${upright%% *}" -v f="${flipped%% *}" 'BEGIN { exit !(u > 20 && u > f + 5) }' ||
+      fail "snowmiku without --cameras should open upright on its first camera (PSNR $upright vs $flipped flipped)"
+  else
+    fail "snowmiku without --cameras should open on the cameras beside it"
+  fi
+  kill "$viewer_pid" 2>/dev/null
+  wait "$viewer_pid" 2>/dev/null
+  viewer_pid=
+else
+  echo "snowmiku check left out: no $shared/snowmiku"
+fi
+
 [ $failed -eq 0 ] && echo "viewer: all checks passed" || { sed 's/^/    /' "$work/view.log"; exit 1; }
