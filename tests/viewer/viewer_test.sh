@@ -45,7 +45,7 @@ for attempt in 1 2 3; do
   sleep 0.5
   if kill -0 "$xvfb_pid" 2>/dev/null && xdotool getmouselocation >/dev/null 2>&1; then
     # In $work, where its screenshots go.
-    (cd "$work" && exec "$vksplat" view demo/demo.ply --cameras cameras.json --compare small.ply --size 320x240) \
+    (cd "$work" && exec "$vksplat" view demo/demo.ply --cameras cameras.json --compare small.ply --size 320x240 --no-hud) \
       >"$work/view.log" 2>&1 &
     viewer_pid=$!
     sleep 1
@@ -92,6 +92,25 @@ else
   echo "FAILED: no first frame from the top camera; title: $(xdotool getwindowname "$window" 2>/dev/null)"
   exit 1  # nothing else can be checked
 fi
+
+# H brings the HUD (started with --no-hud) into the top-left corner: the status line, then every
+# key below it, then nothing again. The title does not change, so the screen is polled.
+hud_shows() {  # REGION OP VALUE WHAT
+  for _ in $(seq 150); do
+    import -window "$window" "$work/hud.png"
+    awk -v m="$(mean_of "$work/hud.png" "$1")" -v v="$3" -v op="$2" 'BEGIN { exit !((op == ">") ? m > v : m < v) }' &&
+      return 0
+    sleep 0.2
+  done
+  fail "$4: mean $(mean_of "$work/hud.png" "$1") of $1, wanted $2 $3"
+}
+xdotool key --window "$window" h
+hud_shows 120x12+4+4 ">" 0.08 "H should show the HUD's status line"
+hud_shows 120x12+4+60 "<" 0.03 "the status line alone should be one line"
+xdotool key --window "$window" h
+hud_shows 120x12+4+60 ">" 0.08 "H again should list the keys below the status line"
+xdotool key --window "$window" h
+hud_shows 30x30+0+0 "<" 0.02 "H a third time should hide the HUD"
 
 xdotool key --window "$window" n
 if wait_title "camera 2/2 \(side\)"; then
@@ -150,7 +169,7 @@ expect_mean "$work/after_drag.png" 320x240+0+0 ">" 0.03 "scene still in view aft
 # seen from further back, where both cameras are in view.
 xdotool key --window "$window" Tab
 wait_title " orbit$" || fail "Tab should switch back to orbit mode"
-for _ in 1 2 3 4 5 6 7 8; do xdotool key --window "$window" minus; done
+xdotool key --window "$window" --delay 50 minus minus minus minus minus minus minus minus
 xdotool key --window "$window" v
 if wait_title "frustums - orbit$"; then
   import -window "$window" "$work/frustums.png"
@@ -218,7 +237,7 @@ viewer_pid=
 shared=${VKSPLAT_SHARED_DATA:-$(cd "$(dirname "$0")/../../.." && pwd)/shared/data}
 if [ -f "$shared/snowmiku/point_cloud.ply" ] && [ -f "$shared/snowmiku/cameras.json" ]; then
   window=
-  "$vksplat" view "$shared/snowmiku/point_cloud.ply" --size 330x247 >"$work/view_snowmiku.log" 2>&1 &
+  "$vksplat" view "$shared/snowmiku/point_cloud.ply" --size 330x247 --no-hud >"$work/view_snowmiku.log" 2>&1 &
   viewer_pid=$!
   if wait_title "camera 1/97"; then
     import -window "$window" "$work/snowmiku.png"

@@ -16,7 +16,7 @@ struct ViewArgs {
     std::string scene, cameras, compare, size = "1024x768";
     std::vector<double> up;
     std::vector<float> background{0, 0, 0};
-    bool validation = false;
+    bool validation = false, no_hud = false;
 };
 
 int run_view(const ViewArgs& args) {
@@ -31,6 +31,7 @@ int run_view(const ViewArgs& args) {
         throw InputError("--size", "'" + args.size + "' is not WIDTHxHEIGHT");
     options.background = {args.background[0], args.background[1], args.background[2]};
     options.validation = args.validation;
+    options.hud = !args.no_hud;
     return viewer::run_viewer(options);
 #else
     (void)args;
@@ -49,7 +50,8 @@ void register_view(CLI::App& app, Action& action) {
         "drag pans, wheel zooms. Keys: Tab or F switches orbit/fly, W A S D Q E fly, N/right and P/left step\n"
         "through the dataset cameras, Space flies through them, V shows their frustums, B shows the --compare\n"
         "scene and back, +/- zoom, 0-3 SH degree, C screenshot (vksplat_view_NNN.png in the current\n"
-        "folder, never replacing a file), H prints the keys, Esc quits. The title shows the frame time and SH degree.\n"
+        "folder, never replacing a file), H lists the keys in the HUD (and again hides it), Esc quits. The HUD and\n"
+        "the title show the counts, SH degree and frame time.\n"
         "Without --cameras, a cameras.json beside the scene (a trainer's output folder) gives the up direction\n"
         "and the dataset cameras.\n"
         "Example:\n  vksplat view point_cloud.ply --cameras cameras.json");
@@ -69,6 +71,7 @@ void register_view(CLI::App& app, Action& action) {
         ->delimiter(',')
         ->expected(3)
         ->check(number_in(0.0, 1.0));
+    command->add_flag("--no-hud", args->no_hud, "start without the HUD (counts, SH degree, frame time; H brings it back)");
     command->add_flag("--validation", args->validation, "enable Vulkan validation layers (slow; for debugging)");
     command->callback([&action, args] { action = [args] { return run_view(*args); }; });
 }

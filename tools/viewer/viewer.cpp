@@ -16,6 +16,7 @@
 #include "display_modes.hpp"
 #include "frustum_splats.hpp"
 #include "glfw_window.hpp"
+#include "hud_overlay.hpp"
 #include "swapchain.hpp"
 #include "vksplat/camera/camera_controls.hpp"
 #include "vksplat/error.hpp"
@@ -32,7 +33,7 @@ constexpr const char* kKeys =
     "keys: Tab/F orbit or fly | W A S D Q E fly | N/right, P/left the next or previous dataset camera | "
     "+/- zoom | Space fly through the dataset cameras | V their frustums | B the --compare scene and back | "
     "0 1 2 3 SH degree | [ ] splat scale | M splats, points or ellipsoids | "
-    "C screenshot (vksplat_view_NNN.png here) | H these keys | Esc quit";
+    "C screenshot (vksplat_view_NNN.png here) | H the keys, then no HUD | Esc quit";
 
 // Seconds the fly-through takes from one dataset camera to the next.
 constexpr double kFlySeconds = 1.5;
@@ -107,8 +108,10 @@ public:
           context_(window_.lend()),
           renderer_(context_),
           sync_(window_.device(), window_.queue_family()),
+          hud_(window_),
           controls_(start_controls(cloud)) {
         gaussians_ = cloud.size();
+        hud_state_ = options.hud ? Hud::status : Hud::none;
         renderer_.set_scene(cloud);
         // Frustums a twentieth of the first view's distance deep, edges a hundredth of that thick;
         // dots for M's points a five-hundredth of it.
@@ -265,7 +268,11 @@ private:
                 if (!compare_renderer_) return;
                 showing_compare_ = !showing_compare_;
                 break;
-            case GLFW_KEY_H: std::printf("%s\n", kKeys); std::fflush(stdout); return;
+            case GLFW_KEY_H:
+                hud_state_ = hud_state_ == Hud::status ? Hud::keys : hud_state_ == Hud::keys ? Hud::none : Hud::status;
+                if (hud_state_ == Hud::keys) std::printf("%s\n", kKeys);
+                std::fflush(stdout);
+                break;
             default: return;
         }
         dirty_ = true;
@@ -357,8 +364,11 @@ private:
         check(vkBeginCommandBuffer(sync_.commands, &begin), "vkBeginCommandBuffer");
         const Camera camera = controls_.camera(int(extent_.width), int(extent_.height));
         shown().record(sync_.commands, camera, settings_,
-                         RenderTarget::to_image(swapchain_->images()[index], swapchain_->format(),
-                                                VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_PRESENT_SRC_KHR));
+                       RenderTarget::to_image(swapchain_->images()[index], swapchain_->format(),
+                                              VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL));
+        // The last frame is done (the fence above), so the HUD's buffer is free to redraw.
+        hud_.set_text(hud_lines(), extent_.width, extent_.height);
+        hud_.record(sync_.commands, swapchain_->images()[index]);
         check(vkEndCommandBuffer(sync_.commands), "vkEndCommandBuffer");
 
         // The copy into the image (a transfer) waits for the presentation engine to let go of it;
@@ -394,7 +404,30 @@ private:
         // Frame time: recording, the GPU's work and presentation, as the user waits for them.
         check(vkWaitForFences(device, 1, &sync_.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
         const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+        last_ms_ = ms;
         update_title(ms);
+    }
+
+    // The HUD: counts, SH degree and the last frame's time; then (H) every key, a group a line;
+    // then (H again) nothing.
+    std::vector<std::string> hud_lines() const {
+        if (hud_state_ == Hud::none) return {};
+        char status[160];
+        const double fps = last_ms_ > 0 ? 1000.0 / last_ms_ : 0.0;
+        std::snprintf(status, sizeof(status), "%zu Gaussians  SH %d  %.1f ms (%.*f fps)  %s%s  H: keys",
+                      showing_compare_ ? compare_gaussians_ : gaussians_, settings_.max_sh_degree, last_ms_,
+                      fps < 10 ? 1 : 0, fps, look().c_str(),
+                      controls_.mode() == CameraControls::Mode::orbit ? "orbit" : "fly");
+        std::vector<std::string> lines{status};
+        if (hud_state_ != Hud::keys) return lines;
+        const std::string keys = kKeys;
+        for (size_t from = std::string("keys: ").size(); from < keys.size();) {
+            const size_t bar = keys.find(" | ", from);
+            lines.push_back(keys.substr(from, bar == std::string::npos ? std::string::npos : bar - from));
+            if (bar == std::string::npos) break;
+            from = bar + 3;
+        }
+        return lines;
     }
 
     // How the scene is drawn, when not as plain splats: "points - ", "scale 1.25 - ".
@@ -434,6 +467,7 @@ private:
     gpu::Context context_;
     Renderer renderer_;
     FrameSync sync_;
+    HudOverlay hud_;
     CameraControls controls_;
     std::unique_ptr<Swapchain> swapchain_;
     bool stale_swapchain_ = false;  // out of date or suboptimal: rebuild before the next frame
@@ -442,6 +476,9 @@ private:
     size_t gaussians_ = 0;
     GaussianCloud scene_;          // as read
     GaussianCloud with_frustums_;  // with dataset cameras: the scene, then V's frustums
+    enum class Hud { none, status, keys };
+    Hud hud_state_ = Hud::status;
+    double last_ms_ = 0;      // the last frame's time, for the HUD
     bool showing_frustums_ = false;
     DisplayMode display_mode_ = DisplayMode::splats;
     double splat_scale_ = 1.0;

@@ -15,6 +15,7 @@ struct ViewerOptions {
     int width = 1024, height = 768;           // initial window size
     std::array<float, 3> background{0, 0, 0};
     bool validation = false;
+    bool hud = true;                          // start with the HUD's status line (H cycles it)
 };
 
 // Opens the window and runs until it is closed or Escape is pressed. Throws InputError for bad
