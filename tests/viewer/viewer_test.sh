@@ -74,6 +74,12 @@ wait_title() {
 }
 # mean_of IMAGE WxH+X+Y: mean brightness (0..1) of that part of the image.
 mean_of() { convert "$1" -crop "$2" +repage -colorspace Gray -format "%[fx:mean]" info:; }
+# expect_differ IMAGE_A IMAGE_B MIN WHAT: more than MIN pixels of the two images differ.
+expect_differ() {
+  local differing
+  differing=$(compare -metric AE "$1" "$2" null: 2>&1)
+  [ "${differing%%.*}" -gt "$3" ] 2>/dev/null || fail "$4 ($differing pixels differ)"
+}
 # expect_mean IMAGE REGION OP VALUE WHAT
 expect_mean() {
   local m
@@ -117,8 +123,7 @@ if wait_title "camera 2/2 \(side\)"; then
   import -window "$window" "$work/side.png"
   expect_mean "$work/side.png" 160x60+80+90 ">" 0.15 "scene in the middle (side view)"
   expect_mean "$work/side.png" 320x30+0+0 "<" 0.05 "background above the scene (side view)"
-  differing=$(compare -metric AE "$work/top.png" "$work/side.png" null: 2>&1)
-  [ "${differing%%.*}" -gt 5000 ] 2>/dev/null || fail "the side view should differ from the top view ($differing pixels do)"
+  expect_differ "$work/top.png" "$work/side.png" 5000 "the side view should differ from the top view"
 else
   fail "N did not step to the next dataset camera"
 fi
@@ -142,8 +147,7 @@ grep -q "keys: Tab/F orbit or fly" "$work/view.log" || fail "the viewer should p
 xdotool key --window "$window" b
 if wait_title "B: small.ply - [0-9]+ Gaussians"; then
   import -window "$window" "$work/compare.png"
-  differing=$(compare -metric AE "$work/vksplat_view_001.png" "$work/compare.png" null: 2>&1)
-  [ "${differing%%.*}" -gt 500 ] 2>/dev/null || fail "the --compare scene should look different ($differing pixels differ)"
+  expect_differ "$work/vksplat_view_001.png" "$work/compare.png" 500 "the --compare scene should look different"
 else
   fail "B should show the --compare scene"
 fi
@@ -176,8 +180,7 @@ if wait_title "frustums - orbit$"; then
   xdotool key --window "$window" v
   if wait_title "H: keys - orbit$"; then
     import -window "$window" "$work/far.png"
-    differing=$(compare -metric AE "$work/far.png" "$work/frustums.png" null: 2>&1)
-    [ "${differing%%.*}" -gt 50 ] 2>/dev/null || fail "V should draw the frustums ($differing pixels differ)"
+    expect_differ "$work/far.png" "$work/frustums.png" 50 "V should draw the frustums"
   else
     fail "V again should hide the frustums"
   fi
@@ -191,8 +194,7 @@ look() {  # KEY TITLE-PATTERN NAME: after KEY the title matches and the picture 
   xdotool key --window "$window" "$1"
   if wait_title "$2"; then
     import -window "$window" "$work/$3.png"
-    differing=$(compare -metric AE "$work/far.png" "$work/$3.png" null: 2>&1)
-    [ "${differing%%.*}" -gt 50 ] 2>/dev/null || fail "$3 should look different ($differing pixels differ)"
+    expect_differ "$work/far.png" "$work/$3.png" 50 "$3 should look different"
   else
     fail "$1 should show $3"
   fi
