@@ -6,12 +6,9 @@
 #include <map>
 #include <vector>
 
-#include "support/gpu_fixture.hpp"
-#include "support/scenes.hpp"
-#include "vksplat/io/image.hpp"
-#include "vksplat/render/renderer.hpp"
 #include "vksplat/train/budget_strategy.hpp"
 #include "vksplat/train/training_loop.hpp"
+#include "train/photographed_views.hpp"
 
 namespace vksplat::test {
 namespace {
@@ -72,21 +69,9 @@ TEST(BudgetStrategy, RefusesSettingsItCannotFollow) {
     EXPECT_THROW(train::BudgetStrategy(reference, pruning, {}), std::invalid_argument);
 }
 
-class BudgetTraining : public GpuTest {
+class BudgetTraining : public PhotographedViews {
 protected:
-    BudgetTraining() : renderer(context()) {
-        truth = random_scene(7, 60, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.0f);
-        renderer.set_scene(truth);
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const RenderOutput out = renderer.render(cameras[v]);
-            photos.emplace(v, train::Photo::from_image(io::ImageRGB{out.width, out.height, out.rgb}));
-        }
-    }
-    Renderer renderer;
-    GaussianCloud truth;
-    std::vector<Camera> cameras = row_of_five_views();
-    std::vector<size_t> views = {0, 1, 2, 3, 4};
-    std::map<size_t, train::Photo> photos;
+    BudgetTraining() : PhotographedViews(60) {}
 };
 
 // Removing Gaussians keeps the others' parameters, in order; the survivors keep training.

@@ -7,12 +7,9 @@
 #include <map>
 #include <vector>
 
-#include "support/gpu_fixture.hpp"
-#include "support/scenes.hpp"
-#include "vksplat/io/image.hpp"
-#include "vksplat/render/renderer.hpp"
 #include "vksplat/train/strategy.hpp"
 #include "vksplat/train/training_loop.hpp"
+#include "train/photographed_views.hpp"
 
 namespace vksplat::test {
 namespace {
@@ -70,21 +67,9 @@ public:
     std::atomic<bool>* stop = nullptr;
 };
 
-class TrainingLoop : public GpuTest {
+class TrainingLoop : public PhotographedViews {
 protected:
-    TrainingLoop() : renderer(context()) {
-        truth = random_scene(7, 30, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.0f);
-        renderer.set_scene(truth);
-        for (size_t v = 0; v < cameras.size(); ++v) {
-            const RenderOutput out = renderer.render(cameras[v]);
-            photos.emplace(v, train::Photo::from_image(io::ImageRGB{out.width, out.height, out.rgb}));
-        }
-    }
-    Renderer renderer;
-    GaussianCloud truth;
-    std::vector<Camera> cameras = row_of_five_views();
-    std::vector<size_t> views = {0, 1, 2, 3, 4};
-    std::map<size_t, train::Photo> photos;
+    TrainingLoop() : PhotographedViews(30) {}
 };
 
 TEST_F(TrainingLoop, AsksTheStrategyAroundEveryStepAndReportsTheLast) {
