@@ -215,11 +215,13 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     for (uint32_t i = 0; i < keep.size(); ++i)
         if (keep[i]) plan.sources.push_back(i);
     plan.fresh_from = plan.split_from = uint32_t(plan.sources.size());
-    const DensifyInputs before = d.densify.download_inputs(d.scene);
+    // Only the sums: the geometry densification plans from is not needed here.
+    const std::vector<float> before =
+        gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(d.scene.layout.count) * kDensifyStride);
     std::vector<float> sums;
     sums.reserve(plan.sources.size() * kDensifyStride);
     for (uint32_t i : plan.sources)
-        sums.insert(sums.end(), before.sums.begin() + i * kDensifyStride, before.sums.begin() + (i + 1) * kDensifyStride);
+        sums.insert(sums.end(), before.begin() + i * kDensifyStride, before.begin() + (i + 1) * kDensifyStride);
     TrainableScene next = d.densify.apply(d.scene, plan);
     if (!sums.empty()) next.restore_densify_sums(d.context, sums);
     d.scene = std::move(next);
