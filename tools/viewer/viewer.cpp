@@ -118,9 +118,7 @@ public:
         point_size_ = controls_.distance() / 500.0;
         if (!cameras_.empty()) {
             const double depth = controls_.distance() / 20.0;
-            with_frustums_ = cloud;
-            const GaussianCloud frustums = frustum_splats(cameras_, depth, depth / 100.0, cloud.sh_degree);
-            for (size_t i = 0; i < frustums.size(); ++i) with_frustums_.append(frustums, i);
+            frustums_ = frustum_splats(cameras_, depth, depth / 100.0, cloud.sh_degree);
         }
         scene_ = std::move(cloud);
         // A renderer of its own, so that B switches at once, without uploading a scene again.
@@ -283,7 +281,7 @@ private:
     void upload_scene() {
         GaussianCloud shown = display_cloud(scene_, display_mode_, splat_scale_, point_size_);
         if (showing_frustums_)
-            for (size_t i = scene_.size(); i < with_frustums_.size(); ++i) shown.append(with_frustums_, i);
+            for (size_t i = 0; i < frustums_.size(); ++i) shown.append(frustums_, i);
         renderer_.set_scene(shown);
     }
 
@@ -475,7 +473,7 @@ private:
     RenderSettings settings_;
     size_t gaussians_ = 0;
     GaussianCloud scene_;          // as read
-    GaussianCloud with_frustums_;  // with dataset cameras: the scene, then V's frustums
+    GaussianCloud frustums_;       // V's, with dataset cameras
     enum class Hud { none, status, keys };
     Hud hud_state_ = Hud::status;
     double last_ms_ = 0;      // the last frame's time, for the HUD
