@@ -208,6 +208,9 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                         const TrainOptions& options, const TestMeasure& measure,
                         const std::function<void(const train::LoopStatus&)>& progress) {
     const TrainRecipe& recipe = options.recipe;
+    const DensifyStrategy strategy_kind = chosen_strategy(recipe);
+    if (strategy_kind == DensifyStrategy::budget && recipe.densify.max_gaussians == 0)
+        throw InputError("--strategy budget", "needs --max-gaussians: the budget it trains to");
     TrainResult result;
     result.ply = fs::absolute(options.out_dir / "point_cloud.ply");
     result.cameras_json = fs::absolute(options.out_dir / "cameras.json");
@@ -255,24 +258,22 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                std::to_string(room) + " Gaussians at this resolution; training to " + std::to_string(room));
     schedule.densify.max_gaussians = schedule.densify.max_gaussians > 0 ? std::min(schedule.densify.max_gaussians, room) : room;
     schedule.white_background = options.background == std::array<float, 3>{1.0f, 1.0f, 1.0f};
-    result.strategy = std::string(to_string(chosen_strategy(recipe)));
-    GaussianCloud start = data.initial;
+    result.strategy = std::string(to_string(strategy_kind));
+    std::optional<GaussianCloud> subset;  // of the starting points, where the budget asks for fewer
     std::unique_ptr<train::Strategy> strategy;
     train::BudgetStrategy* budget_strategy = nullptr;
-    if (chosen_strategy(recipe) == DensifyStrategy::reference) {
+    if (strategy_kind == DensifyStrategy::reference) {
         strategy = std::make_unique<train::ReferenceStrategy>(schedule);
     } else {
-        if (recipe.densify.max_gaussians == 0)
-            throw InputError("--strategy budget", "needs --max-gaussians: the budget it trains to");
         train::BudgetSchedule budget = recipe.budget;
         budget.budget = schedule.densify.max_gaussians;
         const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget.budget) * recipe.start_fraction)));
-        if (start.size() > most) {
-            start = random_subset(start, most, options.seed);
+        if (data.initial.size() > most) {
+            subset = random_subset(data.initial, most, options.seed);
             notice("budget " + std::to_string(budget.budget) + ": starting from a random " + std::to_string(most) +
                    " of the " + std::to_string(data.initial.size()) + " starting points, so that growth has room");
         }
-        budget.start = start.size();
+        budget.start = subset ? subset->size() : data.initial.size();
         budget.settle_at = std::min(recipe.densify_until, recipe.iterations);
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
@@ -289,7 +290,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
         options.resume ? std::make_unique<train::Trainer>(context, checkpoint, train_options)
-                       : std::make_unique<train::Trainer>(context, start, train_options);
+                       : std::make_unique<train::Trainer>(context, subset ? *subset : data.initial, train_options);
 
     train::LoopOptions loop{.iterations = recipe.iterations,
                             .seed = options.seed,
