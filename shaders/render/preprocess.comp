@@ -26,22 +26,12 @@
 
 layout(local_size_x = 256) in;
 #include "shaders/sort/radix_digit_counts.glsl"
+#include "shaders/common/gaussian_shape.glsl"
 
 layout(push_constant) uniform Push { PreprocessPush pc; };
 
 // Above the bits of every positive depth (and of every NaN but this one).
 const uint NOT_DRAWN = 0xffffffffu;
-
-mat3 covariance_3d(vec3 scale, vec4 q) {
-    const float r = q.x, x = q.y, y = q.z, z = q.w;
-    // Rows of the rotation matrix of the (normalised) quaternion.
-    const mat3 rotation = transpose(mat3(
-        vec3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - r * z), 2.0 * (x * z + r * y)),
-        vec3(2.0 * (x * y + r * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - r * x)),
-        vec3(2.0 * (x * z - r * y), 2.0 * (y * z + r * x), 1.0 - 2.0 * (x * x + y * y))));
-    const mat3 m = rotation * mat3(scale.x, 0, 0, 0, scale.y, 0, 0, 0, scale.z);
-    return m * transpose(m);
-}
 
 // Not drawn. The radius is zeroed too: per-Gaussian statistics read "radius > 0" as visible in
 // the reference's sense (in front of the near plane, non-empty 3-sigma rectangle).

@@ -15,19 +15,11 @@
 #include "shaders/render/frame.h"
 #include "shaders/render/sh.glsl"
 #include "shaders/train/differentiable_renderer.h"
+#include "shaders/common/gaussian_shape.glsl"
 
 layout(local_size_x = 256) in;
 
 layout(push_constant) uniform Push { PreprocessBackwardPush pc; };
-
-// Rotation matrix of a unit quaternion (w, x, y, z), as preprocess.comp builds it.
-mat3 rotation_matrix(vec4 q) {
-    const float r = q.x, x = q.y, y = q.z, z = q.w;
-    return transpose(mat3(
-        vec3(1.0 - 2.0 * (y * y + z * z), 2.0 * (x * y - r * z), 2.0 * (x * z + r * y)),
-        vec3(2.0 * (x * y + r * z), 1.0 - 2.0 * (x * x + z * z), 2.0 * (y * z - r * x)),
-        vec3(2.0 * (x * z - r * y), 2.0 * (y * z + r * x), 1.0 - 2.0 * (x * x + y * y))));
-}
 
 // d L / d (w, x, y, z) of a unit quaternion, from d L / d R (g[column][row], GLSL's order).
 vec4 rotation_backward(vec4 q, mat3 g) {
