@@ -43,7 +43,13 @@ int main(int argc, char** argv) {
     app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
     std::string strategy = "automatic", ranking = "mean";
     uint64_t evaluate_every = 0;
-    app.add_option("--strategy", strategy, "automatic, reference or budget");
+    app.add_option("--strategy", strategy, "automatic, reference, budget or mcmc");
+    app.add_option("--mcmc-noise", recipe.mcmc.position_noise);
+    app.add_option("--mcmc-opacity-reg", recipe.mcmc.opacity_regularization);
+    app.add_option("--mcmc-scale-reg", recipe.mcmc.scale_regularization);
+    app.add_option("--mcmc-growth", recipe.mcmc.growth);
+    app.add_option("--mcmc-until", recipe.mcmc.refine_until);
+    app.add_option("--mcmc-start-opacity", recipe.mcmc.start_opacity);
     app.add_option("--growth-exponent", recipe.budget.growth_exponent);
     app.add_option("--reach", recipe.budget.reach);
     app.add_option("--ranking", ranking, "mean or sum (of the densification gradient)");
@@ -114,6 +120,8 @@ int main(int argc, char** argv) {
         std::printf("strategy %s: %zu pruned by importance in %llu events (%.1f s scoring)\n", result.strategy.c_str(),
                     result.budget_events.pruned, static_cast<unsigned long long>(result.budget_events.prune_events),
                     result.budget_events.importance_seconds);
+        if (recipe.strategy == jobs::DensifyStrategy::mcmc)
+            std::printf("mcmc: %zu relocated, %zu added\n", result.mcmc_events.relocated, result.mcmc_events.added);
         std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);
         return 0;
     } catch (const std::exception& e) {

@@ -4,7 +4,8 @@
 // the SH block splits into the DC coefficient and the rest). Every parameter steps every
 // iteration, also with a zero gradient (the moments decay), as torch's dense Adam does. A step
 // whose status says a gradient was not finite, or the frame overflowed its tile entries, changes
-// nothing: the host counts it as skipped.
+// nothing: the host counts it as skipped. The regularisers of TrainOptions (3DGS-MCMC's mean opacity
+// and mean scale terms) join the gradient here: they reach every Gaussian, seen or not.
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
@@ -27,7 +28,13 @@ void main() {
     const uint n = pc.count;
     const uint total = sh_offset(n) + pc.sh_floats * n;
     for (uint i = gl_GlobalInvocationID.x; i < total; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
-        const float g = pc.grads.v[i];
+        float g = pc.grads.v[i];
+        if (i >= opacities_offset(n) && i < sh_offset(n)) {
+            const float opacity = 1.0 / (1.0 + exp(-pc.params.v[i]));
+            g += pc.opacity_regularization * opacity * (1.0 - opacity);
+        } else if (i >= log_scales_offset(n) && i < rotations_offset(n)) {
+            g += pc.scale_regularization * exp(pc.params.v[i]);
+        }
         const float m = pc.beta1 * pc.first_moment.v[i] + (1.0 - pc.beta1) * g;
         const float v = pc.beta2 * pc.second_moment.v[i] + (1.0 - pc.beta2) * g * g;
         pc.first_moment.v[i] = m;

@@ -20,6 +20,11 @@ struct AdamStepPush {
     float beta1, beta2, epsilon;
     float bias_correction1;  // 1 - beta1^t
     float bias_correction2;  // 1 - beta2^t
+    // 3DGS-MCMC's regularisers, added to the gradient here (0: off): d/d logit of
+    // opacity_regularization x sigmoid(logit), and d/d log-scale of scale_regularization x exp(log-scale),
+    // each weight already divided by the number of values the loss averages over.
+    float opacity_regularization;
+    float scale_regularization;
 };
 
 SHADER_NAMESPACE_END

@@ -17,11 +17,11 @@ struct DensifyGatherPush {
     Floats new_first;
     Floats new_second;
     Uints sources;         // per new Gaussian: the old one it copies
-    Floats split_values;   // per split sample: position (3), log-scale (3)
+    Floats overrides;      // per overridden Gaussian: position (3), log-scale (3), opacity logit (1)
     uint old_count;
     uint new_count;
     uint fresh_from;       // new Gaussians (zero moments) from here on
-    uint split_from;       // split samples from here on
+    uint override_from;    // Gaussians with values of their own (overrides) from here on
     uint sh_floats;        // SH floats per Gaussian (3 K)
 };
 

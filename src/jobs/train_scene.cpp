@@ -118,6 +118,14 @@ void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode 
 // The budget recipe's settings as a checkpoint records them ("reference" for the reference recipe).
 std::string budget_text(const TrainRecipe& r) {
     if (chosen_strategy(r) == DensifyStrategy::reference) return "reference";
+    if (chosen_strategy(r) == DensifyStrategy::mcmc) {
+        const auto& m = r.mcmc;
+        return "mcmc: every " + std::to_string(m.refine_every) + " from " + std::to_string(m.refine_from) + " until " +
+               std::to_string(m.refine_until) + ", growth " + std::to_string(m.growth) + ", opacity " +
+               std::to_string(m.min_opacity) + ", regularisers " + std::to_string(m.opacity_regularization) + " " +
+               std::to_string(m.scale_regularization) + ", noise " + std::to_string(m.position_noise) + ", start " +
+               std::to_string(m.start_opacity) + " " + std::to_string(r.start_fraction);
+    }
     const auto& b = r.budget;
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
@@ -147,14 +155,15 @@ std::string_view to_string(DensifyStrategy strategy) {
         case DensifyStrategy::automatic: return "automatic";
         case DensifyStrategy::reference: return "reference";
         case DensifyStrategy::budget: return "budget";
+        case DensifyStrategy::mcmc: return "mcmc";
     }
     return "?";
 }
 
 DensifyStrategy parse_densify_strategy(std::string_view name) {
-    for (auto s : {DensifyStrategy::automatic, DensifyStrategy::reference, DensifyStrategy::budget})
+    for (auto s : {DensifyStrategy::automatic, DensifyStrategy::reference, DensifyStrategy::budget, DensifyStrategy::mcmc})
         if (name == to_string(s)) return s;
-    throw InputError("--strategy " + std::string(name), "unknown; choose automatic, reference or budget");
+    throw InputError("--strategy " + std::string(name), "unknown; choose automatic, reference, budget or mcmc");
 }
 
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
@@ -209,8 +218,9 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                         const std::function<void(const train::LoopStatus&)>& progress) {
     const TrainRecipe& recipe = options.recipe;
     const DensifyStrategy strategy_kind = chosen_strategy(recipe);
-    if (strategy_kind == DensifyStrategy::budget && recipe.densify.max_gaussians == 0)
-        throw InputError("--strategy budget", "needs --max-gaussians: the budget it trains to");
+    if (strategy_kind != DensifyStrategy::reference && recipe.densify.max_gaussians == 0)
+        throw InputError("--strategy " + std::string(to_string(strategy_kind)),
+                         "needs --max-gaussians: the budget it trains to");
     TrainResult result;
     result.ply = fs::absolute(options.out_dir / "point_cloud.ply");
     result.cameras_json = fs::absolute(options.out_dir / "cameras.json");
@@ -262,17 +272,32 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     std::optional<GaussianCloud> subset;  // of the starting points, where the budget asks for fewer
     std::unique_ptr<train::Strategy> strategy;
     train::BudgetStrategy* budget_strategy = nullptr;
-    if (strategy_kind == DensifyStrategy::reference) {
-        strategy = std::make_unique<train::ReferenceStrategy>(schedule);
-    } else {
-        train::BudgetSchedule budget = recipe.budget;
-        budget.budget = schedule.densify.max_gaussians;
-        const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget.budget) * recipe.start_fraction)));
+    train::McmcStrategy* mcmc_strategy = nullptr;
+    const size_t budget_count = schedule.densify.max_gaussians;
+    if (strategy_kind != DensifyStrategy::reference) {
+        const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget_count) * recipe.start_fraction)));
         if (data.initial.size() > most) {
             subset = random_subset(data.initial, most, options.seed);
-            notice("budget " + std::to_string(budget.budget) + ": starting from a random " + std::to_string(most) +
+            notice("budget " + std::to_string(budget_count) + ": starting from a random " + std::to_string(most) +
                    " of the " + std::to_string(data.initial.size()) + " starting points, so that growth has room");
         }
+    }
+    if (strategy_kind == DensifyStrategy::reference) {
+        strategy = std::make_unique<train::ReferenceStrategy>(schedule);
+    } else if (strategy_kind == DensifyStrategy::mcmc) {
+        train::McmcSchedule mcmc = recipe.mcmc;
+        mcmc.budget = budget_count;
+        if (!subset) subset = data.initial;
+        // The paper starts every Gaussian at opacity 0.5: relocation draws by opacity, and the
+        // reference's 0.1 would leave the first draws to chance.
+        const float logit = float(std::log(mcmc.start_opacity / (1.0 - mcmc.start_opacity)));
+        std::fill(subset->opacity_logits.begin(), subset->opacity_logits.end(), logit);
+        strategy = std::make_unique<train::McmcStrategy>(schedule, mcmc);
+        mcmc_strategy = static_cast<train::McmcStrategy*>(strategy.get());
+        train::use_mcmc_terms(mcmc, train_options);
+    } else {
+        train::BudgetSchedule budget = recipe.budget;
+        budget.budget = budget_count;
         budget.start = subset ? subset->size() : data.initial.size();
         budget.settle_at = std::min(recipe.densify_until, recipe.iterations);
         // The peak fits in memory too.
@@ -311,6 +336,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         train::run_training_loop(*trainer, *strategy, data.cameras, data.train_views, train_photos, loop, progress);
     result.evaluate_seconds = result.snapshot_seconds;
     if (budget_strategy) result.budget_events = budget_strategy->events();
+    if (mcmc_strategy) result.mcmc_events = mcmc_strategy->events();
     result.gaussians = trainer->size();
     if (result.interrupted) return result;
     const GaussianCloud trained = trainer->cloud();
@@ -347,6 +373,8 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"deterministic", options.deterministic},
                            {"pruned_by_importance", result.budget_events.pruned},
                            {"importance_seconds", result.budget_events.importance_seconds},
+                           {"relocated", result.mcmc_events.relocated},
+                           {"added_by_relocation", result.mcmc_events.added},
                            {"evaluate_seconds", result.evaluate_seconds},
                            {"history", history_json(result.history)},
                            {"gpu_ms_per_stage", stages_json(result.stages)}};

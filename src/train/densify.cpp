@@ -45,6 +45,13 @@ struct Geometry {
 
 }  // namespace
 
+void DensifyPlan::add_override(uint32_t source, const glm::vec3& position, const glm::vec3& log_scale,
+                               float opacity_logit) {
+    sources.push_back(source);
+    overrides.insert(overrides.end(), {position.x, position.y, position.z, log_scale.x, log_scale.y, log_scale.z,
+                                       opacity_logit});
+}
+
 DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules, double scene_extent, uint64_t seed) {
     const size_t n = inputs.count;
     if (inputs.geometry.size() != 11 * n || inputs.sums.size() != kDensifyStride * n)
@@ -104,7 +111,7 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
         plan.sources.push_back(uint32_t(i));
         ++plan.report.cloned;
     }
-    plan.split_from = uint32_t(plan.sources.size());
+    plan.override_from = uint32_t(plan.sources.size());
     std::mt19937_64 rng(seed);
     std::normal_distribution<float> normal(0.0f, 1.0f);
     for (size_t i = 0; i < n; ++i) {
@@ -120,10 +127,8 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
                 ++new_pruned;
                 continue;
             }
-            plan.sources.push_back(uint32_t(i));
-            const glm::vec3 position = g.position(i) + offset;
-            for (int k = 0; k < 3; ++k) plan.split_values.push_back(position[k]);
-            for (int k = 0; k < 3; ++k) plan.split_values.push_back(std::log(scale[k] / kSplitShrink));
+            plan.add_override(uint32_t(i), g.position(i) + offset, glm::log(scale / kSplitShrink),
+                              inputs.geometry[g.layout.opacities() + i]);
         }
     }
     plan.report.pruned = n - plan.report.split - survivors + new_pruned;
@@ -155,9 +160,9 @@ TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPl
     if (m == 0) return next;
     const gpu::Buffer sources = gpu::upload_buffer(context, plan.sources, "densify sources");
     // A buffer is never empty, so a plan without splits still has one to point at.
-    std::vector<float> split_values = plan.split_values;
-    if (split_values.empty()) split_values.push_back(0.0f);
-    const gpu::Buffer splits = gpu::upload_buffer(context, split_values, "split samples");
+    std::vector<float> overrides = plan.overrides;
+    if (overrides.empty()) overrides.push_back(0.0f);
+    const gpu::Buffer override_buffer = gpu::upload_buffer(context, overrides, "densify overrides");
     gpu::CommandStream stream(context, 0);
     stream.begin();
     stream.dispatch(impl_->gather,
@@ -168,11 +173,11 @@ TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPl
                      .new_first = next.first_moment.address(),
                      .new_second = next.second_moment.address(),
                      .sources = sources.address(),
-                     .split_values = splits.address(),
+                     .overrides = override_buffer.address(),
                      .old_count = scene.layout.count,
                      .new_count = m,
                      .fresh_from = plan.fresh_from,
-                     .split_from = plan.split_from,
+                     .override_from = plan.override_from,
                      .sh_floats = scene.layout.sh_coefficients * 3},
                     gpu::groups_for(m));
     stream.submit_and_wait();

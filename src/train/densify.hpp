@@ -11,6 +11,8 @@
 #include <memory>
 #include <vector>
 
+#include <glm/vec3.hpp>
+
 #include "gpu/command_stream.hpp"
 #include "train/trainable_scene.hpp"
 #include "vksplat/train/trainer.hpp"
@@ -28,13 +30,16 @@ struct DensifyInputs {
 
 // The new scene: Gaussian j copies old Gaussian sources[j]. Survivors come first in their order,
 // then clones, then split samples (as the reference concatenates); from fresh_from on the moments
-// are zero; split sample j >= split_from takes position and log-scale from
-// split_values[6 (j - split_from) ...].
+// are zero; Gaussian j >= override_from takes position, log-scale and opacity logit from
+// overrides[7 (j - override_from) ...] (the reference's split samples; MCMC's relocations).
 struct DensifyPlan {
     std::vector<uint32_t> sources;
-    uint32_t fresh_from = 0, split_from = 0;
-    std::vector<float> split_values;
+    uint32_t fresh_from = 0, override_from = 0;
+    std::vector<float> overrides;
     DensifyReport report;
+
+    // Appends a copy of `source` that takes the given values (override_from must already be set).
+    void add_override(uint32_t source, const glm::vec3& position, const glm::vec3& log_scale, float opacity_logit);
 };
 
 DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules, double scene_extent, uint64_t seed);

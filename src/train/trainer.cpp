@@ -14,8 +14,10 @@
 #include "train/densify.hpp"
 #include "train/differentiable_renderer.hpp"
 #include "train/loss_passes.hpp"
+#include "train/relocation.hpp"
 #include "train/trainable_scene.hpp"
 #include "shaders/train/adam_step.kernel.hpp"
+#include "shaders/train/position_noise.kernel.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
 
@@ -58,6 +60,7 @@ struct Trainer::Impl {
     DifferentiableRenderer renderer;
     LossPasses loss;
     gpu::Kernel<shader::train::AdamStepKernel> adam;
+    gpu::Kernel<shader::train::PositionNoiseKernel> noise;
     DensifyPasses densify;
     gpu::CommandStream stream;
     gpu::Buffer photo_upload, photo, pixel_grad;
@@ -68,9 +71,10 @@ struct Trainer::Impl {
     Impl(const gpu::Context& c, const TrainOptions& o)
         : context(c),
           options(o),
-          renderer(c, o.deterministic ? GradientSums::fixed_point : GradientSums::device_default),
+          renderer(c, o.deterministic ? GradientSums::fixed_point : GradientSums::device_default, o.blend_backward),
           loss(c),
           adam(c),
+          noise(c),
           densify(c),
           stream(c),
           sh_degree(o.sh_degree) {}
@@ -114,7 +118,10 @@ struct Trainer::Impl {
                 .beta2 = kBeta2,
                 .epsilon = kEpsilon,
                 .bias_correction1 = static_cast<float>(1.0 - std::pow(double(kBeta1), t)),
-                .bias_correction2 = static_cast<float>(1.0 - std::pow(double(kBeta2), t))};
+                .bias_correction2 = static_cast<float>(1.0 - std::pow(double(kBeta2), t)),
+                // Means over the Gaussians (opacity) and over their 3 axes (scale).
+                .opacity_regularization = static_cast<float>(options.opacity_regularization / scene.layout.count),
+                .scale_regularization = static_cast<float>(options.scale_regularization / (3.0 * scene.layout.count))};
     }
 
     StepResult step(const Camera& camera, const Photo& target);
@@ -155,9 +162,21 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
                         gpu::groups_for(static_cast<uint32_t>(std::min<uint64_t>(scene.layout.total(), 0xffffffffu))));
         stream.barrier();
         stream.mark("adam");
+        if (options.position_noise > 0) {
+            stream.dispatch(noise,
+                            {.params = scene.params.address(),
+                             .status = renderer.status_buffer().address(),
+                             .count = n,
+                             .seed = static_cast<uint32_t>(iteration * 0x9e3779b9ull),
+                             .scale = static_cast<float>(options.position_noise * position_rate())},
+                            gpu::groups_for(n));
+            stream.barrier();
+            stream.mark("position noise");
+        }
         renderer.record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();
+        renderer.learn_timings(stream);
         const uint32_t needed = renderer.entries_needed();  // checked even when the frame fits
         if ((renderer.status() & kStepOverflowed) == 0) break;
         render::check_frame_attempts(result.attempts, "view '" + camera.name + "'");
@@ -208,13 +227,21 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     return plan.report;
 }
 
+RelocationReport Trainer::relocate(const RelocationRules& rules) {
+    auto& d = *impl_;
+    const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
+    if (relocation.report.relocated + relocation.report.added > 0)
+        d.scene = d.densify.apply(d.scene, relocation.plan);
+    return relocation.report;
+}
+
 size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     auto& d = *impl_;
     if (keep.size() != d.scene.layout.count) throw std::invalid_argument("Trainer::remove: one flag per Gaussian");
     DensifyPlan plan;
     for (uint32_t i = 0; i < keep.size(); ++i)
         if (keep[i]) plan.sources.push_back(i);
-    plan.fresh_from = plan.split_from = uint32_t(plan.sources.size());
+    plan.fresh_from = plan.override_from = uint32_t(plan.sources.size());
     // Only the sums: the geometry densification plans from is not needed here.
     const std::vector<float> before =
         gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(d.scene.layout.count) * kDensifyStride);

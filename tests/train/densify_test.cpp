@@ -47,11 +47,12 @@ TEST(Densify, ClonesSmallAndSplitsLargeAboveTheThreshold) {
     // Survivors in order (0, 1, 3), then the clone of 0, then 2's two samples.
     EXPECT_EQ(plan.sources, (std::vector<uint32_t>{0, 1, 3, 0, 2, 2}));
     EXPECT_EQ(plan.fresh_from, 3u);
-    EXPECT_EQ(plan.split_from, 4u);
-    ASSERT_EQ(plan.split_values.size(), 12u);
+    EXPECT_EQ(plan.override_from, 4u);
+    ASSERT_EQ(plan.overrides.size(), 14u);
     for (int s = 0; s < 2; ++s) {
-        EXPECT_LT(std::abs(plan.split_values[6 * s] - 2.0f), 4 * 0.5f) << s;
-        for (int k = 0; k < 3; ++k) EXPECT_NEAR(std::exp(plan.split_values[6 * s + 3 + k]), 0.5f / 1.6f, 1e-6) << s;
+        EXPECT_LT(std::abs(plan.overrides[7 * s] - 2.0f), 4 * 0.5f) << s;
+        for (int k = 0; k < 3; ++k) EXPECT_NEAR(std::exp(plan.overrides[7 * s + 3 + k]), 0.5f / 1.6f, 1e-6) << s;
+        EXPECT_EQ(plan.overrides[7 * s + 6], 0.0f) << s;  // the parent's opacity logit, as the reference splits
     }
 }
 
@@ -73,7 +74,7 @@ TEST(Densify, SplitSamplesFollowTheParentsAnisotropicShape) {
         ASSERT_EQ(plan.sources.size(), 2u);
         for (size_t j = 0; j < 2; ++j, ++samples)
             for (int k = 0; k < 3; ++k) {
-                const double x = plan.split_values[6 * j + k];
+                const double x = plan.overrides[7 * j + k];
                 sum[k] += x;
                 sum_sq[k] += x * x;
             }
@@ -150,8 +151,8 @@ TEST_F(DensifyPasses, MoveParametersAndMomentsByThePlan) {
     train::DensifyPlan plan;
     plan.sources = {3, 1, 1, 2, 2};  // survivors 3, 1; clone of 1; two samples of 2
     plan.fresh_from = 2;
-    plan.split_from = 3;
-    plan.split_values = {10, 11, 12, -1, -2, -3, 20, 21, 22, -4, -5, -6};
+    plan.override_from = 3;
+    plan.overrides = {10, 11, 12, -1, -2, -3, 1.5f, 20, 21, 22, -4, -5, -6, 2.5f};
     const train::DensifyPasses passes(context());
     train::TrainableScene next = passes.apply(scene, plan);
     ASSERT_EQ(next.layout.count, 5u);
@@ -162,13 +163,13 @@ TEST_F(DensifyPasses, MoveParametersAndMomentsByThePlan) {
         const size_t i = plan.sources[j];
         SCOPED_TRACE(j);
         for (int k = 0; k < 3; ++k) {
-            const float position = j >= 3 ? plan.split_values[6 * (j - 3) + k] : params.positions[3 * i + k];
-            const float log_scale = j >= 3 ? plan.split_values[6 * (j - 3) + 3 + k] : params.log_scales[3 * i + k];
+            const float position = j >= 3 ? plan.overrides[7 * (j - 3) + k] : params.positions[3 * i + k];
+            const float log_scale = j >= 3 ? plan.overrides[7 * (j - 3) + 3 + k] : params.log_scales[3 * i + k];
             EXPECT_EQ(p.positions[3 * j + k], position);
             EXPECT_EQ(p.log_scales[3 * j + k], log_scale);
         }
         for (int k = 0; k < 4; ++k) EXPECT_EQ(p.rotations[4 * j + k], params.rotations[4 * i + k]);
-        EXPECT_EQ(p.opacity_logits[j], params.opacity_logits[i]);
+        EXPECT_EQ(p.opacity_logits[j], j >= 3 ? plan.overrides[7 * (j - 3) + 6] : params.opacity_logits[i]);
         for (int k = 0; k < sh; ++k) EXPECT_EQ(p.sh[sh * j + k], params.sh[sh * i + k]);
         // Moments carry over for survivors and start at zero for new Gaussians, in every block.
         const bool fresh = j >= 2;

@@ -92,6 +92,9 @@ int run_train(const TrainArgs& args) {
                     result.strategy.c_str(), result.budget_events.pruned,
                     static_cast<unsigned long long>(result.budget_events.prune_events),
                     result.budget_events.importance_seconds);
+    if (result.mcmc_events.relocated + result.mcmc_events.added > 0)
+        std::printf("mcmc recipe: %zu transparent Gaussians moved, %zu added\n", result.mcmc_events.relocated,
+                    result.mcmc_events.added);
     if (result.test.psnr.empty())
         std::printf("test views: none held out, so no test PSNR or SSIM\n");
     else
@@ -122,10 +125,11 @@ void register_train(CLI::App& app, Action& action) {
                         "when they would fill more than half of it)")
         ->check(count_in(1));
     command->add_option("--strategy", args->strategy,
-                        "how Gaussians grow: budget (needs --max-gaussians), reference (the 3DGS recipe; "
-                        "--max-gaussians then only caps it) or automatic (budget when --max-gaussians is given)")
+                        "how Gaussians grow: budget (needs --max-gaussians), mcmc (3DGS-MCMC's relocation to "
+                        "--max-gaussians), reference (the 3DGS recipe; --max-gaussians then only caps it) or "
+                        "automatic (budget when --max-gaussians is given)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"automatic", "reference", "budget"}));
+        ->check(CLI::IsMember({"automatic", "reference", "budget", "mcmc"}));
     command->add_option("--budget-peak", args->budget_peak,
                         "budget recipe: grow to this multiple of --max-gaussians, then keep the budget's most "
                         "important (1: grow to the budget only, better where a scene over-fits)")

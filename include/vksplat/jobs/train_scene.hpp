@@ -27,17 +27,19 @@
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/train/budget_strategy.hpp"
+#include "vksplat/train/mcmc_strategy.hpp"
 #include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"
 #include "vksplat/train/training_loop.hpp"
 
 namespace vksplat::jobs {
 
-// How the Gaussians grow: the reference recipe (train::ReferenceStrategy) or training to a budget
-// (train::BudgetStrategy). automatic: the budget recipe when densify.max_gaussians is set, else the
+// How the Gaussians grow: the reference recipe (train::ReferenceStrategy), or training to a budget
+// by scheduled growth and pruning (train::BudgetStrategy) or by 3DGS-MCMC's relocation
+// (train::McmcStrategy). automatic: the budget recipe when densify.max_gaussians is set, else the
 // reference.
-enum class DensifyStrategy { automatic, reference, budget };
-// "automatic", "reference", "budget"; parse_densify_strategy throws InputError listing them.
+enum class DensifyStrategy { automatic, reference, budget, mcmc };
+// "automatic", "reference", "budget", "mcmc"; parse_densify_strategy throws InputError listing them.
 std::string_view to_string(DensifyStrategy strategy);
 DensifyStrategy parse_densify_strategy(std::string_view name);
 
@@ -48,6 +50,9 @@ struct TrainRecipe : train::ReferenceSchedule {
     // The budget recipe's growth and pruning; its budget is densify.max_gaussians and its start the
     // starting points, at most start_fraction x the budget of them (a seeded random subset).
     train::BudgetSchedule budget;
+    // The MCMC recipe's terms; its budget is densify.max_gaussians too, and it starts from the same
+    // subset of the starting points.
+    train::McmcSchedule mcmc;
     double start_fraction = 0.5;
     uint64_t iterations = 30000;
     uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
@@ -111,6 +116,7 @@ struct TrainResult : train::LoopResult {
     size_t gaussians = 0;
     std::string strategy;              // "reference" or "budget"
     train::BudgetEvents budget_events; // what the budget recipe pruned by importance
+    train::McmcEvents mcmc_events;     // what the MCMC recipe moved and added
     std::vector<TrainSnapshot> history;
     double evaluate_seconds = 0;       // measuring history's test PSNR
     eval::Quality test;                // on the test views against the photos

@@ -59,6 +59,18 @@ struct TrainOptions {
     // same inputs gives the same bytes every time; the default float atomics add in a different
     // order each step, so densification and the result drift apart between runs.
     bool deterministic = false;
+    // How the blend backward divides its work; `fastest` times both forms on the first steps and
+    // keeps the faster (BlendBackward). The form that ran names the step's stage, "blend backward
+    // (per pixel)" or "(per splat)".
+    BlendBackward blend_backward = BlendBackward::fastest;
+    // 3DGS-MCMC's terms (Kheradmand et al. 2024), all 0 (off) in the reference recipe. The loss
+    // gains opacity_regularization x mean opacity + scale_regularization x mean scale (over every
+    // Gaussian and axis), which starves what the picture does not need; and after every step each
+    // position moves by position_noise x the position rate x gate(1 - opacity) x Sigma eps
+    // (shaders/train/position_noise.comp), which moves only the nearly transparent.
+    double opacity_regularization = 0;
+    double scale_regularization = 0;
+    double position_noise = 0;
     // Written into every checkpoint; a checkpoint of another owner is refused on resume.
     CheckpointOwner checkpoint_owner;
 };
@@ -118,6 +130,20 @@ struct DensifyReport {
     size_t before = 0, cloned = 0, split = 0, pruned = 0, after = 0;
 };
 
+// 3DGS-MCMC's densification (Kheradmand et al. 2024, sec. 4.2): every Gaussian of opacity at most
+// min_opacity is moved onto a live one, drawn with probability proportional to opacity; then
+// copies of Gaussians drawn the same way are added until the scene holds `target` (none when it
+// holds as many already). A Gaussian drawn k times and its k copies share its place with opacity
+// and scales chosen so that together they render as it did (relocated_copy).
+struct RelocationRules {
+    double min_opacity = 0.005;
+    size_t target = 0;
+};
+
+struct RelocationReport {
+    size_t before = 0, relocated = 0, added = 0, after = 0;
+};
+
 class Trainer {
 public:
     // Sanitises a copy of `initial` (see sanitize(); dropped Gaussians are gone from cloud()) and
@@ -145,6 +171,9 @@ public:
     // Clones, splits and prunes by the gradients gathered since the last call (see DensifyRules),
     // carrying Adam's moments over (zero for new Gaussians), then starts gathering afresh.
     DensifyReport densify(const DensifyRules& rules);
+    // MCMC's relocation and growth (RelocationRules), on the device; the Gaussians drawn and their
+    // copies restart Adam's moments at zero. The draws are seeded by the iteration.
+    RelocationReport relocate(const RelocationRules& rules);
     // Removes every Gaussian whose keep[i] is 0 (keep has size() entries), carrying the others'
     // parameters, moments and densification sums over in their order. Returns how many were removed.
     size_t remove(const std::vector<uint8_t>& keep);
