@@ -58,6 +58,8 @@ int main(int argc, char** argv) {
     app.add_option("--start-fraction", recipe.start_fraction);
     app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
+    bool deterministic = false;
+    app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);
     try {
@@ -79,6 +81,7 @@ int main(int argc, char** argv) {
         options.out_dir = out_dir;
         options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
         options.evaluate_every = evaluate_every;
+        options.deterministic = deterministic;
         RenderSettings settings;
         settings.background = options.background;
         const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {
