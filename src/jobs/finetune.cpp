@@ -3,6 +3,9 @@
 #include "vksplat/jobs/finetune.hpp"
 
 #include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
 #include <map>
 
 #include "jobs/fingerprint.hpp"
@@ -45,7 +48,80 @@ train::CheckpointOwner finetune_owner(const GaussianCloud& cloud, const std::vec
              {"position rate", options.train.position_schedule == train::PositionSchedule::decay ? "decay" : "final"}}};
 }
 
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+void check_time_budget(const FinetuneOptions& options) {
+    if (!options.seconds) return;
+    const double seconds = *options.seconds;
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", seconds);
+    if (!std::isfinite(seconds) || seconds <= 0)
+        throw InputError(std::string("--seconds ") + text, "must be a finite number of seconds above 0");
+    if (options.resume)
+        throw InputError("--resume", "continues a run of a set iteration count: give --iters, not --seconds");
+}
+
+// How long a trainer of `cloud` takes to be made and to step, timed on one made for the purpose:
+// the trainer the run steps must know its iteration count when it is made (the position rate
+// decays over it), so it cannot time itself. The first step, which grows the buffers, is not
+// counted; the others stop at 50 or about 2% of `budget`, whichever comes first.
+struct StepTime {
+    double make_seconds = 0, step_seconds = 0;
+};
+StepTime time_steps(const gpu::Context& context, const GaussianCloud& cloud, const train::TrainOptions& options,
+                    const std::vector<Camera>& cameras, const std::vector<size_t>& views,
+                    const std::map<size_t, train::Photo>& photos, uint64_t seed, double budget) {
+    constexpr int kMostSteps = 50;
+    constexpr double kShare = 0.02;
+    const auto start = Clock::now();
+    train::Trainer trainer(context, cloud, options);
+    StepTime time{seconds_since(start), 0};
+    std::vector<double> steps;
+    const auto timed_from = Clock::now();
+    for (uint64_t i = 0; steps.size() < kMostSteps && (steps.size() < 2 || seconds_since(timed_from) < kShare * budget);
+         ++i) {
+        const size_t view = train::training_view(i, seed, views);
+        const auto step_start = Clock::now();
+        trainer.step(cameras[view], photos.at(view));
+        if (i > 0) steps.push_back(seconds_since(step_start));
+    }
+    std::nth_element(steps.begin(), steps.begin() + steps.size() / 2, steps.end());
+    time.step_seconds = steps[steps.size() / 2];
+    return time;
+}
+
+// The re-fit's strategy (train::RefitStrategy: nothing around the steps) that also stops the loop
+// at a deadline, passing the caller's stop (Ctrl-C) on: the loop takes one stop flag.
+class DeadlineStrategy final : public train::Strategy {
+public:
+    DeadlineStrategy(Clock::time_point deadline, const std::atomic<bool>* user_stop)
+        : deadline_(deadline), user_stop_(user_stop) {}
+    void before_step(train::Trainer&, uint64_t) override {}
+    void after_step(train::Trainer&, uint64_t) override {
+        if (user_stop_ && user_stop_->load()) stop_ = true;
+        if (Clock::now() >= deadline_) out_of_time_ = stop_ = true;
+    }
+    const std::atomic<bool>* stop() const { return &stop_; }
+    // The loop stopped because the time was up, not because it was asked to (Ctrl-C).
+    bool out_of_time() const { return out_of_time_ && !(user_stop_ && user_stop_->load()); }
+
+private:
+    Clock::time_point deadline_;
+    const std::atomic<bool>* user_stop_;
+    std::atomic<bool> stop_{false};
+    bool out_of_time_ = false;
+};
+
 }  // namespace
+
+uint64_t planned_iterations(double seconds, double step_seconds) {
+    constexpr uint64_t kMost = uint64_t(1) << 30;
+    if (!(step_seconds > 0)) return kMost;
+    const double steps = std::floor(seconds / step_seconds);
+    return steps < 1 ? 1 : steps >= double(kMost) ? kMost : uint64_t(steps);
+}
 
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
@@ -60,6 +136,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     result.train_views = std::move(split.train);
     result.held_out = split.held_out;
     if (result.train_views.empty()) throw InputError("finetune", "no training views");
+    check_time_budget(options);
 
     // Outputs before anything slow: a run must not end in a refusal, nor write over what it read.
     if (!options.out.empty()) {
@@ -83,23 +160,42 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
     if (train_options.scene_extent <= 0) train_options.scene_extent = training_extent(cameras, result.train_views, notice);
     result.scene_extent = train_options.scene_extent;
     if (resumed) notice(resume_notice(*resumed, options.iterations));
+    if (quality && !options.resume) {
+        GaussianCloud sanitized = cloud;
+        sanitize(sanitized);
+        result.before = quality(sanitized);
+    }
+
+    // A time budget runs from here: the photos are loaded and the scene measured.
+    const auto start = Clock::now();
+    uint64_t iterations = options.iterations;
+    if (options.seconds) {
+        const StepTime time = time_steps(context, cloud, train_options, cameras, result.train_views, train_photos,
+                                         options.seed, *options.seconds);
+        result.planned_iterations = iterations =
+            planned_iterations(*options.seconds - seconds_since(start) - time.make_seconds, time.step_seconds);
+    }
     if (train_options.position_schedule == train::PositionSchedule::decay)
-        train_options.rates.position_decay_steps = static_cast<int>(std::min<uint64_t>(options.iterations, 1u << 30));
+        train_options.rates.position_decay_steps = static_cast<int>(std::min<uint64_t>(iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
         options.resume ? std::make_unique<train::Trainer>(context, options.checkpoint, train_options)
                        : std::make_unique<train::Trainer>(context, cloud, train_options);
     result.sanitize = trainer->sanitize_report();
-    if (quality && !options.resume) result.before = quality(trainer->cloud());
 
-    train::RefitStrategy strategy;
-    train::LoopOptions loop{.iterations = options.iterations,
+    // Without a budget the deadline lies beyond any run (as does one of more than 30 years).
+    const auto budget = std::chrono::duration<double>(std::min(options.seconds.value_or(1e9), 1e9));
+    DeadlineStrategy strategy(options.seconds ? start + std::chrono::duration_cast<Clock::duration>(budget)
+                                              : Clock::time_point::max(),
+                              options.stop);
+    train::LoopOptions loop{.iterations = iterations,
                             .seed = options.seed,
                             .checkpoint = options.checkpoint,
                             .checkpoint_every = options.checkpoint_every,
-                            .stop = options.stop,
+                            .stop = strategy.stop(),
                             .source = options.source};
     static_cast<train::LoopResult&>(result) =
         train::run_training_loop(*trainer, strategy, cameras, result.train_views, train_photos, loop, progress);
+    if (strategy.out_of_time()) result.interrupted = false;
     result.device_bytes = trainer->device_bytes();
     result.cloud = trainer->cloud();
     if (result.interrupted) return result;

@@ -1,7 +1,10 @@
 // Prune, re-fit, and (in rounds) prune the re-fitted model again.
 #include "vksplat/jobs/prune_recover.hpp"
 
+#include <array>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/view_selection.hpp"
@@ -22,16 +25,49 @@ void check_rounds(const RecoverOptions& options) {
     if (options.rounds < 1) throw InputError("--rounds " + std::to_string(options.rounds), "must be 1 or more");
     if (options.rounds > 1 && options.finetune.resume)
         throw InputError("--resume", "continues one re-fit; it cannot resume a run of several rounds");
-    if (options.iterations < uint64_t(options.rounds))
-        throw InputError("--recover " + std::to_string(options.iterations),
+    if (options.seconds) {
+        char text[32];
+        std::snprintf(text, sizeof(text), "%g", *options.seconds);
+        const std::string what = std::string("--recover-seconds ") + text;
+        if (!std::isfinite(*options.seconds) || *options.seconds <= 0)
+            throw InputError(what, "must be a finite number of seconds above 0");
+        if (options.iterations)
+            throw InputError(what, "is a budget instead of an iteration count: give --recover " +
+                                       std::to_string(*options.iterations) + " or the seconds, not both");
+    }
+    if (options.iterations && *options.iterations < uint64_t(options.rounds))
+        throw InputError("--recover " + std::to_string(*options.iterations),
                          "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
 }
+
+double dropped_share(size_t n, size_t kept) { return n == 0 ? 0.0 : 1.0 - double(kept) / double(n); }
 
 }  // namespace
 
 uint64_t round_iterations(uint64_t iterations, int round, int rounds) {
     const auto n = uint64_t(rounds), r = uint64_t(round);
     return iterations / n + (r <= iterations % n ? 1 : 0);
+}
+
+uint64_t default_recover_iterations(double dropped) {
+    // (fraction dropped, iterations), joined by straight lines; flat beyond the last.
+    constexpr std::array<std::pair<double, double>, 3> kKnots{{{0.5, 5000}, {0.8, 30000}, {0.9, 60000}}};
+    if (!(dropped > kKnots.front().first)) return uint64_t(kKnots.front().second);
+    for (size_t i = 1; i < kKnots.size(); ++i) {
+        const auto [x0, y0] = kKnots[i - 1];
+        const auto [x1, y1] = kKnots[i];
+        if (dropped < x1) return uint64_t(std::llround((y0 + (y1 - y0) * (dropped - x0) / (x1 - x0)) / 1000.0)) * 1000;
+    }
+    return uint64_t(kKnots.back().second);
+}
+
+double round_seconds(double remaining, int round, int rounds) { return remaining / double(rounds - round + 1); }
+
+FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept) {
+    FinetuneOptions finetune = options.finetune;
+    finetune.seconds = options.seconds;
+    finetune.iterations = options.iterations.value_or(default_recover_iterations(dropped_share(n, kept)));
+    return finetune;
 }
 
 void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos) {
@@ -52,6 +88,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
     settings.background = finetune.train.background;
     settings.max_sh_degree = finetune.train.sh_degree;
 
+    const auto start = std::chrono::steady_clock::now();
+    const uint64_t iterations = options.iterations.value_or(default_recover_iterations(dropped_share(cloud.size(), keep)));
     RecoverResult result;
     GaussianCloud model = cloud.subset(ranking.keep_best(round_target(cloud.size(), keep, 1, options.rounds)));
     for (int round = 1;; ++round) {
@@ -59,7 +97,14 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         done.kept = model.size();
         // Only the last round's model is measured: the others are intermediate.
         const bool last = round == options.rounds;
-        finetune.iterations = round_iterations(options.iterations, round, options.rounds);
+        if (options.seconds) {
+            const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            // A round the earlier ones left no time still takes its one step (planned_iterations).
+            finetune.seconds = std::max(round_seconds(*options.seconds - spent, round, options.rounds), 1e-3);
+        } else {
+            finetune.seconds.reset();
+            finetune.iterations = round_iterations(iterations, round, options.rounds);
+        }
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
                                     [&](const train::LoopStatus& s) {
                                         if (progress) progress(round, s);

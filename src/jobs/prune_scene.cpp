@@ -150,10 +150,8 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     };
     if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
         prune::QualityBudget refitted = *budget;
-        FinetuneOptions finetune = recover.finetune;
-        finetune.iterations = recover.iterations;
         refitted.refit = [&](const GaussianCloud& model) {
-            return finetune_scene(context, model, cameras, photos, finetune, {},
+            return finetune_scene(context, model, cameras, photos, single_refit(recover, cloud.size(), model.size()), {},
                                   [&](const train::LoopStatus& s) { report(1, s); })
                 .cloud;
         };
@@ -165,11 +163,10 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         select(result, renderer, cloud, scored, targets, options, progress);
         const GaussianCloud chosen = std::move(*result.budget->model);
         result.budget->model.reset();
-        FinetuneOptions finetune = recover.finetune;
-        finetune.iterations = recover.iterations;
-        const GaussianCloud refitted =
-            finetune_scene(context, chosen, cameras, photos, finetune, {}, [&](const train::LoopStatus& s) { report(1, s); })
-                .cloud;
+        const GaussianCloud refitted = finetune_scene(context, chosen, cameras, photos,
+                                                      single_refit(recover, cloud.size(), chosen.size()), {},
+                                                      [&](const train::LoopStatus& s) { report(1, s); })
+                                           .cloud;
         std::vector<float> chosen_scores;
         for (size_t i = 0; i < result.budget->keep.size(); ++i)
             if (result.budget->keep[i]) chosen_scores.push_back(scored.scores[i]);

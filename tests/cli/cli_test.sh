@@ -308,6 +308,29 @@ expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "
   --background 1,1,1 -o "$work/recovered.ply"
 expect prune-recover-needs-photos 2 "--recover: re-fits to the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 -o "$work/recovered_nophotos.ply"
+# --recover-seconds: a wall-time budget instead of a count (issue 30), refused unless a positive
+# number of seconds and alone; a bare --recover takes its count from the fraction dropped.
+for seconds in 0 -3 nan inf; do
+  expect "prune-recover-seconds-$seconds" 2 "--recover-seconds $seconds: must be a finite number of seconds above 0" -- \
+    "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 \
+    --recover-seconds "$seconds" --images "$work/photos3" -o "$work/recover_seconds_bad.ply"
+done
+expect prune-recover-seconds-and-count 2 "--recover-seconds 5: is a budget instead of an iteration count" -- \
+  "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 \
+  --recover-seconds 5 --images "$work/photos3" -o "$work/recover_seconds_both.ply"
+expect prune-rounds-need-recover any-failure "--rounds requires --recover or --recover-seconds" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --rounds 2 -o "$work/rounds_only.ply"
+expect finetune-seconds-and-iters 2 "--seconds: is a budget instead of an iteration count" -- "$vksplat" finetune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" --iters 5 --seconds 5 \
+  -o "$work/refit_both.ply"
+expect finetune-seconds-nan 2 "--seconds nan: must be a finite number of seconds above 0" -- "$vksplat" finetune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" --seconds nan -o "$work/refit_nan.ply"
+expect cluster-recover-seconds-negative 2 "--recover-seconds -1: must be a finite number of seconds above 0" -- \
+  "$vksplat" cluster prune "$work/demo/demo.ply" --cameras "$work/ring.json" --work "$work/ring_work" \
+  --images "$work/ring_photos" --recover-seconds -1 -o "$work/ring_seconds.ply"
+expect prune-recover-seconds 0 "round 2: pruned to" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --method blend --ratio 0.5 --recover-seconds 3 --rounds 2 --images "$work/photos3" \
+  --background 1,1,1 -o "$work/recovered_seconds.ply"
 # Every command that reads a scene reads every format (here SPZ).
 expect render-reads-spz 0 "wrote 1 views" -- "$vksplat" render "$work/demo.spz" --cameras "$work/cameras.json" \
   --out "$work/render_spz"

@@ -29,7 +29,8 @@ struct ClusterArgs {
     std::string ratio_of = "gaussians";
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
-    std::optional<uint64_t> recover;
+    std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
+    std::optional<double> recover_seconds;
     std::string recover_loss = "subject";
     bool force = false;
     ClusterStageArgs stage;  // the options of stages 1-6
@@ -86,17 +87,27 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
                  "error heat map)")
         ->needs(c.get_option("--images"));
     auto* recover = c.add_option("--recover", a.recover,
-                                 "then re-fit what is kept for N iterations on the training views' photos (--images), "
-                                 "in one round")
-                        ->check(count_in(1));
+                                 "then re-fit what is kept on the training views' photos (--images), in one round, "
+                                 "for N iterations (without N: by the fraction dropped, as prune --recover)")
+                        ->expected(0, 1)
+                        ->default_str("auto")  // what a bare --recover reads, checked like a given value
+                        ->check(CLI::IsMember({"auto"}) | count_in(1));
+    auto* recover_seconds = c.add_option("--recover-seconds", a.recover_seconds,
+                                         "re-fit (as --recover does) for S seconds of wall time instead of N iterations");
     recover->excludes(c.get_option("--max-psnr-drop"));
-    c.add_option("--recover-loss", a.recover_loss,
-                 "with --recover: what the loss looks at, the subject region of each view (background pixels "
-                 "ignored) or the whole picture")
-        ->check(CLI::IsMember({"subject", "picture"}))
-        ->capture_default_str()
-        ->needs(recover);
+    recover_seconds->excludes(c.get_option("--max-psnr-drop"));
+    auto* loss = c.add_option("--recover-loss", a.recover_loss,
+                              "with --recover: what the loss looks at, the subject region of each view (background "
+                              "pixels ignored) or the whole picture")
+                     ->check(CLI::IsMember({"subject", "picture"}))
+                     ->capture_default_str();
+    c.parse_complete_callback([=] {
+        if (loss->count() && !recover->count() && !recover_seconds->count())
+            throw CLI::RequiresError("--recover-loss", "--recover or --recover-seconds");
+    });
 }
+
+bool refits(const ClusterArgs& args) { return !args.recover.empty() || args.recover_seconds; }
 
 void log_line(const std::string& line) {
     std::printf("%s\n", line.c_str());
@@ -129,7 +140,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
 
     std::unique_ptr<gpu::Context> context;
     std::unique_ptr<Renderer> renderer;
-    if (stages & (kRegions | kProject) || (stages & kPrune && (!args.images.empty() || args.max_psnr_drop || args.recover))) {
+    if (stages & (kRegions | kProject) || (stages & kPrune && (!args.images.empty() || args.max_psnr_drop || refits(args)))) {
         context = std::make_unique<gpu::Context>(args.gpu.context_options());
         renderer = std::make_unique<Renderer>(*context);
     }
@@ -161,16 +172,17 @@ int run_stages(ClusterArgs& args, unsigned stages) {
                                                    : jobs::parse_view_list(args.test_views, cameras.size());
         std::vector<Camera> test;
         for (size_t v : views) test.push_back(cameras[v]);
-        if (args.recover && args.images.empty()) throw InputError("--recover", "needs the photos: give --images");
+        if (refits(args) && args.images.empty()) throw InputError("--recover", "needs the photos: give --images");
         std::string region;
         const jobs::SubjectMasks masks =
             args.images.empty() ? jobs::SubjectMasks{}
                                 : jobs::subject_masks(jobs::parse_subject_spec(args.subject, args.subject_masks), cameras, &region);
         jobs::ClusterPruneResult result;
         timed("prune", [&] {
-            if (args.recover) {
+            if (refits(args)) {
                 jobs::RecoverOptions recover;
-                recover.iterations = *args.recover;
+                if (!args.recover.empty() && args.recover != "auto") recover.iterations = std::stoull(args.recover);
+                recover.seconds = args.recover_seconds;
                 recover.finetune.train.background = options.settings.background;
                 ProgressLine line("re-fit iterations");
                 const auto done = jobs::recover_stage(

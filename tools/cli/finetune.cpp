@@ -19,7 +19,9 @@ namespace {
 struct FinetuneArgs {
     GpuOptions gpu;
     std::string scene, cameras, images, out, test_views, train_views, checkpoint;
-    uint64_t iterations = 5000, checkpoint_every = 1000, seed = 0;
+    std::optional<uint64_t> iterations;  // unset: 5000, unless --seconds
+    std::optional<double> seconds;
+    uint64_t checkpoint_every = 1000, seed = 0;
     std::vector<float> background{0, 0, 0};
     std::string position_lr = "final";
     bool resume = false, force = false, quiet = false, deterministic = false;
@@ -34,12 +36,15 @@ void print_status(const train::LoopStatus& s, bool terminal) {
 }
 
 int run_finetune(const FinetuneArgs& args) {
+    if (args.iterations && args.seconds)
+        throw InputError("--seconds", "is a budget instead of an iteration count: give --iters or --seconds, not both");
     std::vector<std::string> notes;
     const GaussianCloud cloud = read_scene_file(args.scene);
     const auto cameras = io::read_cameras(args.cameras, &notes);
 
     jobs::FinetuneOptions options;
-    options.iterations = args.iterations;
+    options.iterations = args.iterations.value_or(options.iterations);
+    options.seconds = args.seconds;
     if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
     if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
     options.train.background = {args.background[0], args.background[1], args.background[2]};
@@ -73,8 +78,12 @@ int run_finetune(const FinetuneArgs& args) {
     };
 
     const bool terminal = isatty(STDERR_FILENO) && !args.quiet;
-    std::fprintf(stderr, "re-fitting %zu Gaussians on %s: %llu iterations\n", cloud.size(), context.info().name.c_str(),
-                 static_cast<unsigned long long>(args.iterations));
+    if (args.seconds)
+        std::fprintf(stderr, "re-fitting %zu Gaussians on %s for %g s\n", cloud.size(), context.info().name.c_str(),
+                     *args.seconds);
+    else
+        std::fprintf(stderr, "re-fitting %zu Gaussians on %s: %llu iterations\n", cloud.size(),
+                     context.info().name.c_str(), static_cast<unsigned long long>(options.iterations));
     const auto result = jobs::finetune_scene(context, cloud, cameras, photos, options, quality,
                                              [&](const train::LoopStatus& s) {
                                                  if (!args.quiet || s.iteration == s.iterations) print_status(s, terminal);
@@ -124,8 +133,12 @@ void register_finetune(CLI::App& app, Action& action) {
         ->required()
         ->check(CLI::ExistingPath);
     command->add_option("--images", args->images, "the photos, found by camera name")->required()->check(CLI::ExistingDirectory);
-    command->add_option("--iters", args->iterations, "iterations in all (a resumed run counts the earlier ones)")
+    command->add_option("--iters", args->iterations,
+                        "iterations in all (default 5000; a resumed run counts the earlier ones)")
         ->check(count_in(1));
+    command->add_option("--seconds", args->seconds,
+                        "instead of --iters: re-fit for S seconds of wall time (a few steps timed first set the\n"
+                        "count, so that the position rate's decay ends with the time)");
     command->add_option("--test-views", args->test_views,
                         "held-out views, e.g. 0-12 (default: the cameras' test split, else the first 13 if there are more, else all)");
     command->add_option("--train-views", args->train_views, "views to train on (default: all but the test views)");

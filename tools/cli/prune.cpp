@@ -27,7 +27,8 @@ struct PruneArgs {
     std::vector<float> background{0, 0, 0};
     std::optional<int> sh_degree;
     uint64_t seed = 0;
-    std::optional<uint64_t> recover;
+    std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
+    std::optional<double> recover_seconds;
     std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
     std::string position_lr = "decay";
     bool force = false, deterministic = false;
@@ -108,9 +109,10 @@ int run_prune(const PruneArgs& args) {
     options.out = args.out;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
     options.inputs = {args.scene, args.cameras};
-    if (args.recover) {
+    if (!args.recover.empty() || args.recover_seconds) {
         jobs::RecoverOptions recover;
-        recover.iterations = *args.recover;
+        if (!args.recover.empty() && args.recover != "auto") recover.iterations = std::stoull(args.recover);
+        recover.seconds = args.recover_seconds;
         const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector) ||
                             std::holds_alternative<prune::SizeBudget>(options.selector);
         recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
@@ -166,7 +168,8 @@ void register_prune(CLI::App& app, Action& action) {
         "(lossless on those views).\n"
         "Example:\n  vksplat prune lego/point_cloud.ply --cameras lego/cameras.json --method blend \\\n"
         "      --ratio 0.5 --images lego/images --background 1,1,1 -o lego_half.ply\n"
-        "  (add --recover 5000 to re-fit what is kept to the photos: see vksplat finetune)");
+        "  (add --recover to re-fit what is kept to the photos, --recover-seconds 60 to give it a minute:\n"
+        "   see vksplat finetune)");
     auto args = std::make_shared<PruneArgs>();
     command->add_option("scene", args->scene, "scene file (any format vksplat reads)")->required()->check(CLI::ExistingFile);
     command->add_option("--cameras", args->cameras, "cameras.json, transforms.json or a COLMAP sparse folder")
@@ -211,11 +214,18 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
     command->add_option("--seed", args->seed, "seed of the random method")->check(count_in(0));
+    // "auto" is what a bare --recover reads: CLI11 checks the value it stands for like a given one.
     auto* recover = command->add_option("--recover", args->recover,
-                        "re-fit the kept Gaussians to the photos for N iterations (needs --images); with\n"
+                        "re-fit the kept Gaussians to the photos (needs --images) for N iterations, without N\n"
+                        "for 5,000 up to half dropped, rising to 30,000 at 80% and 60,000 at 90%; with\n"
                         "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting;\n"
                         "with --max-mb the model chosen is re-fitted, and still fits")
-        ->check(count_in(1));
+        ->expected(0, 1)
+        ->default_str("auto")
+        ->check(CLI::IsMember({"auto"}) | count_in(1));
+    auto* recover_seconds = command->add_option("--recover-seconds", args->recover_seconds,
+                        "re-fit (as --recover does) for S seconds of wall time in all, shared by the rounds,\n"
+                        "instead of a count of iterations (with --max-psnr-drop: each probe's re-fit)");
     auto* rounds = command->add_option("--rounds", args->rounds,
                                        "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop\n"
                                        "or --max-mb), each dropping a geometrically growing share, ranked on the\n"
@@ -227,13 +237,15 @@ void register_prune(CLI::App& app, Action& action) {
                             ->check(CLI::IsMember({"final", "decay"}));
     auto* deterministic = command->add_flag("--deterministic", args->deterministic,
                                             "with --recover: sum gradients in fixed point, the same bytes every run");
-    rounds->needs(recover);
-    position_lr->needs(recover);
-    deterministic->needs(recover);
     command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);
-    command->callback([&action, args] { action = [args] { return run_prune(*args); }; });
+    command->callback([&action, args, recover, recover_seconds, rounds, position_lr, deterministic] {
+        for (const CLI::Option* option : {rounds, position_lr, deterministic})
+            if (option->count() && !recover->count() && !recover_seconds->count())
+                throw CLI::RequiresError(option->get_name(), "--recover or --recover-seconds");
+        action = [args] { return run_prune(*args); };
+    });
 }
 
 }  // namespace vksplat::cli

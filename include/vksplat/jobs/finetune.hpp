@@ -54,6 +54,12 @@ using QualityProbe = std::function<eval::Quality(const GaussianCloud&)>;
 
 struct FinetuneOptions {
     uint64_t iterations = 5000;
+    // Instead of `iterations` (then not read): the seconds the steps may take, from after the photos
+    // are loaded. The steps of a trainer made for the purpose and thrown away (at most 50, about 2% of
+    // the budget) time a step, the budget less that becomes the iteration count (so the position
+    // rate's decay ends with it), and the run stops at that count or when the time is up, whichever
+    // comes first. Refused unless finite and above 0, and with `resume`.
+    std::optional<double> seconds;
     std::vector<size_t> train_views;   // indices into the cameras; empty: every camera not a test view
     std::vector<size_t> test_views;    // held out: never stepped on; empty: default_test_views
     LossMasks loss_masks;              // empty: every pixel counts
@@ -97,13 +103,18 @@ struct FinetuneResult : train::LoopResult {
     std::vector<size_t> train_views, test_views;
     bool held_out = true;                // no test view was trained on (ViewSplit::held_out)
     double scene_extent = 0;             // what the position rate was scaled by
+    uint64_t planned_iterations = 0;     // with a time budget: the count its timed steps planned
 };
+
+// The iterations a time budget of `seconds` holds at `step_seconds` a step: at least 1 (a re-fit
+// takes a step however short its budget), at most 2^30 (the position decay's horizon is an int).
+uint64_t planned_iterations(double seconds, double step_seconds);
 
 // Checks the output and the checkpoint, loads the training views' photos (checking each against
 // its camera's size), then steps, and writes options.out. Throws InputError before any step for an
-// output or checkpoint it may not write, missing or mis-sized photos, bad view indices, or a resume
-// without a checkpoint of this run; and during the run when steps keep being skipped for
-// non-finite gradients (train::check_skipped_steps).
+// output or checkpoint it may not write, missing or mis-sized photos, bad view indices, a resume
+// without a checkpoint of this run, or a time budget it refuses (FinetuneOptions::seconds); and
+// during the run when steps keep being skipped for non-finite gradients (train::check_skipped_steps).
 FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& cloud,
                               const std::vector<Camera>& cameras, const PhotoSource& photos,
                               const FinetuneOptions& options, const QualityProbe& quality = {},

@@ -5,6 +5,7 @@
 // iterations. One round is "prune once, then re-fit". What `vksplat prune --recover` runs.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "vksplat/jobs/finetune.hpp"
@@ -17,7 +18,13 @@ namespace vksplat::jobs {
 // three rounds, each re-fit decaying the position rate from its initial to its final value. At
 // 80% of lego dropped that loses 1.69 dB where one round at the final rate loses 2.85.
 struct RecoverOptions {
-    uint64_t iterations = 5000;   // re-fit iterations in all, split over the rounds (round_iterations)
+    // Re-fit iterations in all, split over the rounds (round_iterations); unset: as many as
+    // default_recover_iterations gives for the fraction dropped.
+    std::optional<uint64_t> iterations;
+    // Instead of an iteration count: the wall time of the whole re-fit, in seconds, split over the
+    // rounds (round_seconds), each round's share turned into steps by FinetuneOptions::seconds.
+    // Refused with `iterations` set, and unless finite and above 0.
+    std::optional<double> seconds;
     int rounds = 3;
     prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
@@ -41,14 +48,33 @@ size_t round_target(size_t n, size_t target, int round, int rounds);
 // the first rounds taking one more where they do not divide, so that the rounds add up to it.
 uint64_t round_iterations(uint64_t iterations, int round, int rounds);
 
+// The re-fit of one round that prunes `n` Gaussians to `kept`: options.finetune with the round's
+// iterations (options.iterations, else default_recover_iterations of the fraction dropped) or, with
+// options.seconds, that time budget. What a quality or size budget's single re-fit runs.
+FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept);
+
+// The re-fit iterations when none are asked for, by the fraction of the Gaussians dropped (0..1):
+// 5,000 up to half dropped, then rising linearly to 30,000 at 80% and 60,000 at 90% and beyond,
+// in whole thousands. Measured on bonsai (issue 30, blend ranking, 3 rounds, decaying position
+// rate, H200): at 80% dropped 5,000 iterations lose 1.16 dB, 30,000 lose 0.58 (15 s); every
+// doubling gained about 0.22 dB at 80% and 0.29 at 90%, with no sign of levelling off by 30,000,
+// and 30,000 took 15 s at both, so 60,000 at 90% stay near half of a minute.
+uint64_t default_recover_iterations(double dropped);
+
+// The seconds round r (1-based) of `rounds` may take when `remaining` seconds of the budget are
+// left as it starts: an equal share of what is left, so that time the earlier rounds overran (or
+// the scoring between rounds took) comes out of the later ones and the whole stays in the budget.
+double round_seconds(double remaining, int round, int rounds);
+
 // What prune_and_recover would refuse, found without its work: rounds < 1, a resume of several
-// rounds, no iterations per round, and a missing or mis-sized photo of a training view (each read
+// rounds, no iterations per round, a time budget that is not a positive number of seconds or comes
+// with an iteration count, and a missing or mis-sized photo of a training view (each read
 // through checked_photo). For commands to call before they score the views, which takes minutes on
 // a real scene, so that a bad photo is not found only after.
 void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos);
 
 // `ranking` ranks the Gaussians of `cloud` (the unpruned model) for the first round; `keep` is
-// the final count. Throws InputError for rounds < 1 or no iterations per round.
+// the final count. Throws InputError for what check_recover refuses.
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
                                 const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options,
