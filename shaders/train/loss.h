@@ -1,5 +1,5 @@
-// The training loss's kernels (loss_forward.comp, loss_backward.comp), recorded by
-// src/train/loss_passes.cpp (LossPasses): one workgroup per 16 x 16 tile (loss_window.glsl).
+// The training loss's kernel (loss.comp), recorded by src/train/loss_passes.cpp (LossPasses):
+// one workgroup per 16 x 16 tile.
 #ifndef VKSPLAT_TRAIN_LOSS_H
 #define VKSPLAT_TRAIN_LOSS_H
 
@@ -12,9 +12,8 @@ SHADER_CONST(uint, LOSS_TILE, 16)  // pixels per tile side = workgroup side: the
 struct LossPush {
     Vec4s rendered;     // rgb, alpha unused
     Uints photo;        // RGBA8, r in the low byte; alpha 0 masks the pixel out
-    Floats planes;      // 9 planes of width * height: for channel c, planes 3c..3c+2 (see loss_forward.comp)
-    Vec4s partials;     // out of the forward pass: per workgroup the sums of |x - y|, SSIM, (x - y)^2
-    Vec4s gradient;     // out of the backward pass: dL/d rgb, w = 0
+    Vec4s partials;     // out: per workgroup the sums of |x - y|, SSIM, (x - y)^2 (w = 0)
+    Vec4s gradient;     // out: dL/d rgb, w = 0
     uint width;
     uint height;
     uint tiles_x;

@@ -4,17 +4,15 @@
 #include <stdexcept>
 #include <string>
 
-#include "shaders/train/loss_backward.kernel.hpp"
-#include "shaders/train/loss_forward.kernel.hpp"
+#include "shaders/train/loss.kernel.hpp"
 
 namespace vksplat::train {
 namespace {
 
 constexpr uint32_t kTile = shader::train::LOSS_TILE;
-constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the passes walk tiles in a grid-stride loop
-constexpr uint32_t kPlanes = 9;         // A, B, C per channel (loss_forward.comp)
+constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks tiles in a grid-stride loop
 
-// The forward pass's sums of one workgroup, as it writes them (a vec4).
+// The sums of one workgroup, as the kernel writes them (a vec4).
 struct Partial {
     float l1, ssim, mse, unused;
 };
@@ -23,9 +21,8 @@ struct Partial {
 
 struct LossPasses::Impl {
     const gpu::Context& context;
-    gpu::Kernel<shader::train::LossForwardKernel> forward;
-    gpu::Kernel<shader::train::LossBackwardKernel> backward;
-    gpu::Buffer planes, partials;  // device scratch, grown to the largest image recorded
+    gpu::Kernel<shader::train::LossKernel> kernel;
+    gpu::Buffer partials;          // device scratch, grown to the largest image recorded
     gpu::Buffer readback;          // the partials of the last record(), for last()
     // What last() needs of the last record().
     uint32_t groups = 0;
@@ -34,8 +31,7 @@ struct LossPasses::Impl {
 
     explicit Impl(const gpu::Context& c)
         : context(c),
-          forward(c),
-          backward(c) {}
+          kernel(c) {}
 
     // Replaces `buffer` by one of at least `bytes` when it is smaller; contents are not kept.
     void reserve(gpu::Buffer& buffer, VkDeviceSize bytes, gpu::MemoryKind kind, const char* name) {
@@ -51,26 +47,23 @@ LossPasses::~LossPasses() = default;
 void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
     const uint64_t pixels = uint64_t(inputs.width) * inputs.height;
     if (pixels == 0) throw std::invalid_argument("training loss: the image is empty");
-    // The shaders index the planes with 32-bit integers.
-    if (pixels * kPlanes > UINT32_MAX)
+    // The kernel indexes pixels with 32-bit integers.
+    if (pixels > UINT32_MAX)
         throw std::invalid_argument("training loss: " + std::to_string(inputs.width) + " x " +
                                     std::to_string(inputs.height) + " pixels is too large an image");
     Impl& d = *impl_;
     const uint32_t tiles_x = (inputs.width + kTile - 1) / kTile;
     const uint32_t tiles = tiles_x * ((inputs.height + kTile - 1) / kTile);
     const uint32_t groups = std::min(tiles, kMaxGroups);
-    d.reserve(d.planes, pixels * kPlanes * sizeof(float), gpu::MemoryKind::device, "loss planes");
     d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
     d.reserve(d.readback, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
     d.groups = groups;
     d.pixel_channels = 3.0 * double(pixels);
     d.ssim_weight = inputs.ssim_weight;
 
-    // Both passes take the same push (shaders/train/loss.h).
     const shader::train::LossPush push{
         .rendered = inputs.rendered,
         .photo = inputs.photo,
-        .planes = d.planes.address(),
         .partials = d.partials.address(),
         .gradient = inputs.gradient,
         .width = inputs.width,
@@ -80,10 +73,9 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
         .ssim_weight = inputs.ssim_weight,
         .inv_count = float(1.0 / d.pixel_channels),
     };
-    stream.dispatch(d.forward, push, groups);
+    stream.dispatch(d.kernel, push, groups);
     stream.barrier();
     stream.copy(d.partials, d.readback, groups * sizeof(Partial));
-    stream.dispatch(d.backward, push, groups);
     stream.barrier_before_host_read();
 }
 
@@ -106,6 +98,6 @@ LossValue LossPasses::last() const {
     return value;
 }
 
-uint64_t LossPasses::device_bytes() const { return impl_->planes.size() + impl_->partials.size(); }
+uint64_t LossPasses::device_bytes() const { return impl_->partials.size(); }
 
 }  // namespace vksplat::train

@@ -6,8 +6,8 @@
 // and gets no gradient from its own terms (the means still divide by every pixel, so a mask only
 // removes terms). It still lies in the SSIM windows of its neighbours, so within 5 pixels of an
 // unmasked pixel it gets their share of the gradient, as autograd of (mask * ssim_map) gives.
-// The forward and backward passes are shaders/train/loss_forward.comp and loss_backward.comp;
-// vksplat/reference/training_loss.hpp is the double-precision oracle.
+// One kernel computes the sums and the gradient, shaders/train/loss.comp; vksplat/reference/
+// training_loss.hpp is the double-precision oracle.
 #include <cstdint>
 #include <memory>
 
@@ -41,16 +41,16 @@ public:
     LossPasses(const LossPasses&) = delete;
     LossPasses& operator=(const LossPasses&) = delete;
 
-    // Records the loss and its gradient; grows the passes' scratch buffers for the image size
+    // Records the loss and its gradient; grows its scratch buffers for the image size
     // first (so call it outside any recording that other frames still use). Copies the sums to a
     // host-visible buffer of its own. The caller records a barrier before it (the rendered image
-    // and the photo must be visible to shaders) and after it (the gradient is written by its last
-    // dispatch). Throws std::invalid_argument for an empty image, or one of more than 2^32 / 9
-    // pixels (the passes index with 32 bits).
+    // and the photo must be visible to shaders) and after it (the gradient is written by its
+    // dispatch). Throws std::invalid_argument for an empty image, or one of 2^32 pixels or more
+    // (the kernel indexes with 32 bits).
     void record(gpu::CommandStream& stream, const LossInputs& inputs);
     // The sums of the last recorded loss, once its submission has finished.
     LossValue last() const;
-    // Device bytes its scratch holds.
+    // Device bytes its scratch holds: the per-workgroup sums (no per-pixel maps).
     uint64_t device_bytes() const;
 
 private:

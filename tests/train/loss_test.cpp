@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
 #include <random>
 #include <vector>
 
@@ -282,9 +283,12 @@ TEST_F(Loss, MatchesTheReference) {
         int width, height;
         Content content;
     };
-    const Case cases[] = {{64, 48, Content::close}, {1, 1, Content::noise}, {130, 75, Content::noise},
-                          {7, 5, Content::close},   {33, 17, Content::noise}, {130, 75, Content::close},
-                          {1, 1, Content::close},   {37, 29, Content::identical}};
+    // Sizes that are not multiples of the 16-pixel tile, thinner than a tile, or thinner than the
+    // window, so that tiles' regions reach past every edge of the image.
+    const Case cases[] = {{64, 48, Content::close},     {1, 1, Content::noise},   {130, 75, Content::noise},
+                          {7, 5, Content::close},       {33, 17, Content::noise}, {130, 75, Content::close},
+                          {1, 1, Content::close},       {37, 29, Content::identical}, {37, 23, Content::noise},
+                          {300, 7, Content::close},     {3, 90, Content::noise}};
     uint32_t seed = 10;
     for (const Case& c : cases) {
         for (const bool masked : {false, true}) {
@@ -316,7 +320,53 @@ TEST_F(Loss, MatchesTheReference) {
             }
         }
     }
-    EXPECT_GE(passes.device_bytes(), 130u * 75u * 9u * sizeof(float));
+    // The per-pixel maps between the SSIM's moments and the gradient stay in shared memory: the
+    // scratch holds the workgroups' sums only, less than a float per pixel.
+    EXPECT_LT(passes.device_bytes(), 130u * 75u * sizeof(float));
+}
+
+// The GPU's own loss, moved by +-h at a few pixels, against the gradient it writes: the sums and
+// the gradient agree with each other, not only each with the reference. The pixels lie on tile
+// edges and image corners, some masked (their gradient is all from their neighbours' SSIM).
+TEST_F(Loss, GradientMatchesDifferencesOfItsLoss) {
+    train::LossPasses passes(context());
+    ImagePair pair = make_pair(37, 23, Content::noise, true, 40);
+    struct Probe {
+        int x, y;
+    };
+    const Probe probes[] = {{0, 0}, {15, 7}, {16, 7}, {36, 22}, {20, 16}, {31, 12}};
+    const float h = 1e-2f;
+    // Off the L1 kink by more than h: a difference across the kink measures the kink.
+    for (const Probe& probe : probes)
+        for (int ch = 0; ch < 3; ++ch) {
+            const size_t p = size_t(probe.y) * pair.width + probe.x;
+            float& x = pair.rendered[4 * p + ch];
+            const float y = photo_channel(pair.photo[p], ch);
+            if (std::abs(x - y) < 3 * h) x = y + (y < 0.5f ? 4 * h : -4 * h);
+        }
+    const std::vector<uint8_t> mask = pair.mask();
+    int masked_probes = 0;
+    for (const Probe& probe : probes) masked_probes += mask[size_t(probe.y) * pair.width + probe.x] == 0;
+    ASSERT_GT(masked_probes, 0);
+    ASSERT_LT(masked_probes, int(std::size(probes)));
+
+    const Result at = run(passes, pair);
+    const double scale = max_abs(std::vector<double>(at.gradient.begin(), at.gradient.end()));
+    for (const Probe& probe : probes)
+        for (int ch = 0; ch < 3; ++ch) {
+            const size_t i = 4 * (size_t(probe.y) * pair.width + probe.x) + ch;
+            ImagePair moved = pair;
+            moved.rendered[i] = pair.rendered[i] + h;
+            const double up = run(passes, moved).value.loss;
+            moved.rendered[i] = pair.rendered[i] - h;
+            const double down = run(passes, moved).value.loss;
+            // The step actually taken, in float.
+            const double step = double(pair.rendered[i] + h) - double(pair.rendered[i] - h);
+            const double error = std::abs((up - down) / step - double(at.gradient[i]));
+            // Float sums: ~1e-4 of the scale here.
+            EXPECT_LE(error, 1e-3 * scale) << probe.x << ", " << probe.y << " channel " << ch << ": difference "
+                                           << (up - down) / step << ", gradient " << at.gradient[i];
+        }
 }
 
 TEST_F(Loss, TakesTheSsimWeight) {
