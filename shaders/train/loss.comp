@@ -22,15 +22,16 @@
 // The window is symmetric, and the sum runs over the image's pixels p only, so the adjoint of the
 // zero-padded filter is the same filter over planes that are 0 outside the image.
 //
-// A workgroup owns a 16 x 16 tile of pixels (grid-stride over tiles). The gradient of the tile
-// needs A, B, C over the tile plus 5 pixels each side (the region, 26 x 26), and those need x and
-// y over 5 more (the input, 36 x 36). The workgroup computes them all itself, channel by channel,
-// in shared memory, so no per-pixel map leaves the chip and there is one dispatch: the region's
-// moments are recomputed by the neighbouring tiles too, which costs arithmetic but saves writing
-// and reading back 9 floats per pixel and a device-wide barrier. Each filter is separable (11 taps
-// along columns, then rows) and each invocation computes a run of RUN outputs from RUN + 10 inputs
-// held in registers, so shared memory is read about 3.5 times per output instead of 11. The
-// shared array (15 KiB) fits the 16 KiB every Vulkan device offers.
+// A workgroup owns a strip of SEGMENT_TILES tiles of 16 x 16 pixels, one above the other, and
+// walks down it channel by channel (grid-stride over strips). The gradient of a tile needs A, B, C
+// over the tile's columns plus 5 each side and its rows plus 5 above and below; those need x and y
+// over 5 more. The workgroup computes all of it in shared memory, so no per-pixel map leaves the
+// chip and the loss is one dispatch. Walking down, each band of 16 rows is filtered once: the
+// filters are separable and the rows a tile shares with the one above (G of A, B, C along rows)
+// stay in a ring; only the columns beside the strip (which the neighbouring strips compute too)
+// and a 10-row band at the strip's top are computed twice. Each filter invocation computes a run
+// of outputs from inputs held in registers, so shared memory is read a few times per output
+// rather than 11. The shared array (15.3 KiB) fits the 16 KiB every Vulkan device offers.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
@@ -38,37 +39,48 @@
 layout(push_constant) uniform Push { LossPush pc; };
 
 const uint TILE = LOSS_TILE;                  // pixels per tile side = workgroup side
+const uint SEGMENT_TILES = LOSS_SEGMENT_TILES;
 const int RADIUS = 5;                         // window 11 x 11
 const uint TAPS = 2 * RADIUS + 1;
-const uint REGION = TILE + 2 * RADIUS;        // pixels per side whose SSIM terms reach the tile
-const uint INPUT = REGION + 2 * RADIUS;       // pixels per side whose values reach the region
+const uint REGION = TILE + 2 * RADIUS;        // columns whose SSIM terms reach the strip
+const uint INPUT = REGION + 2 * RADIUS;       // columns whose values reach those
+const uint BAND = TILE;                       // rows filtered at once (the first band of a strip: 2 * RADIUS)
 const uint INVOCATIONS = TILE * TILE;
-const uint RUN = 4;                           // outputs per invocation of a filter
-const uint RUN_INPUTS = RUN + TAPS - 1;       // the inputs those outputs read
-const uint REGION_RUNS = (REGION + RUN - 1) / RUN;  // runs per region line (the last one partly used)
-const uint TILE_RUNS = TILE / RUN;
 
-// The three filters and who runs them: invocation t < *_FILTERS runs line t % lines, run t / lines.
-const uint MOMENT_COLUMNS = INPUT * REGION_RUNS;   // G along columns of x, y, x^2 + y^2, xy: INPUT columns
-const uint MOMENT_ROWS = REGION * REGION_RUNS;     // then along the REGION rows: the region's moments, A, B, C
-const uint PLANE_ROWS = REGION * TILE_RUNS;        // G of A, B, C along the region's rows, tile columns only
-// (the last filter, along the tile's columns, is one output pixel per invocation)
+// The filters of a band and their runs: outputs per invocation, from RUN + TAPS - 1 inputs.
+// 1. G along columns of x, y, x^2 + y^2, xy, for the band's rows and the INPUT columns;
+const uint MOMENT_RUN = 4;
+const uint MOMENT_COLUMNS = INPUT * (BAND / MOMENT_RUN);
+// 2. then along rows: the moments, SSIM terms and A, B, C of the band's rows, REGION columns;
+const uint SSIM_RUN = 2;
+const uint SSIM_RUNS = REGION / SSIM_RUN;
+const uint SSIM_ROWS = BAND * SSIM_RUNS;
+// 3. G of A, B, C along rows, for the band's rows and the tile's columns, into the ring;
+const uint PLANE_RUN = 2;
+const uint PLANE_RUNS = TILE / PLANE_RUN;
+const uint PLANE_ROWS = BAND * PLANE_RUNS;
+// 4. then along columns from the ring: the gradient, one pixel of the tile per invocation.
 
-// One shared array, reused by the phases of a channel; lines padded by one float so that
-// invocations walking neighbouring lines hit different banks.
+// Shared memory: the column-filtered moments of a band (4 planes), which A, B, C of the band
+// (3 planes) overwrite, and the ring of row-filtered A, B, C (3 planes of RING rows, enough for a
+// tile's 26 rows while the next band's are written). Lines are padded by one float where
+// invocations walk neighbouring lines, so that they hit different banks.
 const uint MOMENT_PITCH = INPUT + 1;
-const uint MOMENT_PLANE = REGION * MOMENT_PITCH;   // 4 planes: column-filtered moments, REGION x INPUT
+const uint MOMENT_PLANE = BAND * MOMENT_PITCH;
 const uint ABC_PITCH = REGION + 1;
-const uint ABC_PLANE = REGION * ABC_PITCH;         // 3 planes: A, B, C over the region
-const uint FILTERED_OFFSET = 3 * ABC_PLANE;        // then 3 planes of the same along rows, REGION x TILE
-const uint FILTERED_PLANE = REGION * TILE;
-const uint SCRATCH = 4 * MOMENT_PLANE;
-shared float scratch[SCRATCH];
+const uint ABC_PLANE = BAND * ABC_PITCH;
+const uint RING = 32;
+const uint RING_PLANE = RING * TILE;
+const uint RING_OFFSET = 4 * MOMENT_PLANE;
+shared float scratch[RING_OFFSET + 3 * RING_PLANE];
 // A compile-time check (glslang rejects an array of size 0): each filter has an invocation per
-// run, and the filtered planes and the final sums fit beside what they must not overwrite.
-shared float layout_fits[uint(MOMENT_COLUMNS <= INVOCATIONS && MOMENT_ROWS <= INVOCATIONS &&
-                              PLANE_ROWS <= INVOCATIONS && FILTERED_OFFSET + 3 * FILTERED_PLANE <= SCRATCH &&
-                              3 * INVOCATIONS <= SCRATCH)];
+// run, runs tile their lines, A, B, C and the final sums fit where the moments were, and the ring
+// holds a tile's rows, and a band's beside the 10 of the band before that its tile still needs.
+shared float layout_fits[uint(MOMENT_COLUMNS <= INVOCATIONS && SSIM_ROWS <= INVOCATIONS &&
+                              PLANE_ROWS <= INVOCATIONS && BAND % MOMENT_RUN == 0 && REGION % SSIM_RUN == 0 &&
+                              TILE % PLANE_RUN == 0 && 3 * ABC_PLANE <= RING_OFFSET &&
+                              3 * INVOCATIONS <= RING_OFFSET && TILE + 2 * RADIUS <= RING && 2 * RADIUS + BAND <= RING &&
+                              (RING & (RING - 1)) == 0)];
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
 
@@ -92,160 +104,144 @@ float photo_channel(uint word, uint channel) { return float((word >> (8u * chann
 
 float photo_mask(uint word) { return (word >> 24u) != 0u ? 1.0 : 0.0; }
 
+// The ring line of image row y, for a strip whose first row is top.
+uint ring_line(int y, int top) { return uint(y - top + RADIUS) % RING; }
+
 void main() {
     const uvec2 local = gl_LocalInvocationID.xy;
     const uint thread = gl_LocalInvocationIndex;
     const float l1_weight = (1.0 - pc.ssim_weight) * pc.inv_count;
     float l1_sum = 0.0, ssim_sum = 0.0, mse_sum = 0.0;
 
-    // This invocation's line and run in each filter.
-    const uint column = thread % INPUT, column_run = thread / INPUT;
-    const uint moment_row = thread % REGION, moment_run = thread / REGION;
-    const uint plane_row = thread % REGION, plane_run = thread / REGION;
+    // This invocation's line and run in each filter (runs vary fastest where an invocation's
+    // neighbours should write neighbouring floats).
+    const uint moment_column = thread % INPUT, moment_run = thread / INPUT;
+    const uint ssim_run = thread % SSIM_RUNS, ssim_row = thread / SSIM_RUNS;
+    const uint plane_run = thread % PLANE_RUNS, plane_row = thread / PLANE_RUNS;
 
-    for (uint tile = gl_WorkGroupID.x; tile < pc.tiles; tile += gl_NumWorkGroups.x) {
-        const ivec2 origin = ivec2(tile % pc.tiles_x, tile / pc.tiles_x) * int(TILE);
-        const ivec2 region_origin = origin - RADIUS, input_origin = origin - 2 * RADIUS;
-
-        // Everything the tile reads from memory, in one batch before any filtering, so that the
-        // loads' latency is paid once per tile. Pixels outside the image read as 0 (the zero
-        // padding of the reference's F.conv2d(padding = 5)).
-        // The column filter's inputs: column `column` of the input, rows column_run * RUN onwards.
-        vec3 run_x[RUN_INPUTS];
-        uint run_photo[RUN_INPUTS];
-        [[unroll]] for (uint k = 0u; k < RUN_INPUTS; ++k) {
-            const uint row = column_run * RUN + k;
-            const ivec2 p = input_origin + ivec2(column, row);
-            run_x[k] = vec3(0.0);
-            run_photo[k] = 0u;  // reads as 0 in every channel
-            if (thread < MOMENT_COLUMNS && row < INPUT && inside(p)) {
-                const uint j = pixel_index(p);
-                run_x[k] = pc.rendered.v[j].rgb;
-                run_photo[k] = pc.photo.v[j];
-            }
-        }
-        // The masks of the region pixels whose SSIM this invocation evaluates; 0 outside the
-        // image, where s has no term, so that A, B, C are 0 there.
-        float run_mask[RUN];
-        [[unroll]] for (uint i = 0u; i < RUN; ++i) {
-            const ivec2 p = region_origin + ivec2(moment_run * RUN + i, moment_row);
-            run_mask[i] = thread < MOMENT_ROWS && inside(p) ? photo_mask(pc.photo.v[pixel_index(p)]) : 0.0;
-        }
-        // This invocation's own pixel, whose gradient it writes.
-        const ivec2 pixel = origin + ivec2(local);
-        const bool owned = inside(pixel);
-        const uint index = owned ? pixel_index(pixel) : 0u;
-        vec3 x = vec3(0.0), y = vec3(0.0);
-        float mask = 0.0;
-        if (owned) {
-            x = pc.rendered.v[index].rgb;
-            const uint word = pc.photo.v[index];
-            y = vec3(photo_channel(word, 0u), photo_channel(word, 1u), photo_channel(word, 2u));
-            mask = photo_mask(word);
-        }
-        // The L1 term; sign(0) = 0, like torch's.
-        vec3 gradient = l1_weight * mask * sign(x - y);
-        const vec3 diff = x - y;
-        l1_sum += mask * (abs(diff.r) + abs(diff.g) + abs(diff.b));
-        mse_sum += mask * dot(diff, diff);
+    for (uint strip = gl_WorkGroupID.x; strip < pc.strips; strip += gl_NumWorkGroups.x) {
+        const int left = int(strip % pc.tiles_x * TILE);
+        const int top = int(strip / pc.tiles_x * SEGMENT_TILES * TILE);
+        const uint tiles = min(SEGMENT_TILES, pc.tiles_y - strip / pc.tiles_x * SEGMENT_TILES);
+        const int bottom = min(top + int(tiles * TILE), int(pc.height));  // the strip's rows end here
 
         [[unroll]] for (uint ch = 0u; ch < 3u; ++ch) {
-            // G along columns of x, y, x^2 + y^2 and xy: a run of rows of one input column.
-            if (thread < MOMENT_COLUMNS) {
-                vec4 products[RUN_INPUTS];
-                [[unroll]] for (uint k = 0u; k < RUN_INPUTS; ++k) {
-                    const vec2 v = vec2(run_x[k][ch], photo_channel(run_photo[k], ch));
-                    products[k] = vec4(v, dot(v, v), v.x * v.y);
-                }
-                [[unroll]] for (uint i = 0u; i < RUN; ++i) {
-                    const uint row = column_run * RUN + i;
-                    if (row < REGION) {
+            // Band -1 is rows top - 5 .. top + 4, which the first tile needs from above and
+            // beside; band t >= 0 is rows 5 .. 20 of tile t, after which tile t has all it needs.
+            for (int band = -1; band < int(tiles); ++band) {
+                const int first = band < 0 ? top - RADIUS : top + band * int(TILE) + RADIUS;
+                const uint rows = band < 0 ? uint(2 * RADIUS) : BAND;
+
+                // 1. G along columns of x, y, x^2 + y^2 and xy: a run of rows of one input column.
+                // Pixels outside the image read as 0 (the zero padding of the reference's
+                // F.conv2d(padding = 5)).
+                if (thread < MOMENT_COLUMNS && moment_run * MOMENT_RUN < rows) {
+                    vec4 products[MOMENT_RUN + TAPS - 1];
+                    [[unroll]] for (uint k = 0u; k < MOMENT_RUN + TAPS - 1; ++k) {
+                        const ivec2 p = ivec2(left - 2 * RADIUS + int(moment_column),
+                                              first - RADIUS + int(moment_run * MOMENT_RUN + k));
+                        vec2 v = vec2(0.0);
+                        if (inside(p)) {
+                            const uint j = pixel_index(p);
+                            v = vec2(pc.rendered.v[j][ch], photo_channel(pc.photo.v[j], ch));
+                        }
+                        products[k] = vec4(v, dot(v, v), v.x * v.y);
+                    }
+                    [[unroll]] for (uint i = 0u; i < MOMENT_RUN; ++i) {
                         vec4 sum = vec4(0.0);
                         [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * products[i + k];
-                        [[unroll]] for (uint m = 0u; m < 4u; ++m)
-                            scratch[m * MOMENT_PLANE + row * MOMENT_PITCH + column] = sum[m];
+                        const uint at = (moment_run * MOMENT_RUN + i) * MOMENT_PITCH + moment_column;
+                        [[unroll]] for (uint m = 0u; m < 4u; ++m) scratch[at + m * MOMENT_PLANE] = sum[m];
                     }
                 }
-            }
-            barrier();
-            // Then along rows: the region's moments, its SSIM terms and A, B, C.
-            vec3 abc[RUN];
-            if (thread < MOMENT_ROWS) {
-                vec4 columns[RUN_INPUTS];
-                [[unroll]] for (uint k = 0u; k < RUN_INPUTS; ++k) {
-                    const uint col = moment_run * RUN + k;
-                    columns[k] = vec4(0.0);
-                    if (col < INPUT) {
-                        const uint at = moment_row * MOMENT_PITCH + col;
+                barrier();
+                // 2. Then along rows: the moments, the SSIM terms and A, B, C.
+                vec3 abc[SSIM_RUN];
+                if (thread < SSIM_ROWS && ssim_row < rows) {
+                    vec4 columns[SSIM_RUN + TAPS - 1];
+                    [[unroll]] for (uint k = 0u; k < SSIM_RUN + TAPS - 1; ++k) {
+                        const uint at = ssim_row * MOMENT_PITCH + ssim_run * SSIM_RUN + k;
                         columns[k] = vec4(scratch[at], scratch[at + MOMENT_PLANE], scratch[at + 2u * MOMENT_PLANE],
-                                           scratch[at + 3u * MOMENT_PLANE]);
+                                          scratch[at + 3u * MOMENT_PLANE]);
+                    }
+                    [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
+                        const ivec2 p = ivec2(left - RADIUS + int(ssim_run * SSIM_RUN + i), first + int(ssim_row));
+                        // 0 outside the image, where s has no term, so that A, B, C are 0 there.
+                        const float mask = inside(p) ? photo_mask(pc.photo.v[pixel_index(p)]) : 0.0;
+                        vec4 moments = vec4(0.0);
+                        [[unroll]] for (uint k = 0u; k < TAPS; ++k) moments += WINDOW[k] * columns[i + k];
+                        const float mu_x = moments.x, mu_y = moments.y;
+                        const float a = 2.0 * mu_x * mu_y + SSIM_C1, b = 2.0 * (moments.w - mu_x * mu_y) + SSIM_C2;
+                        const float c = mu_x * mu_x + mu_y * mu_y + SSIM_C1;
+                        const float d = moments.z - mu_x * mu_x - mu_y * mu_y + SSIM_C2;
+                        const float inv_cd = 1.0 / (c * d);  // the one division: 1/c = d inv_cd, 1/d = c inv_cd
+                        const float s = a * b * inv_cd;
+                        const float ds_dd = -s * c * inv_cd;
+                        const float ds_dcov = 2.0 * a * inv_cd;
+                        const float ds_dmu_x = 2.0 * b * inv_cd * (mu_y - mu_x * a * d * inv_cd);
+                        const float w = -pc.ssim_weight * mask * pc.inv_count;
+                        abc[i] = w * vec3(ds_dmu_x - 2.0 * mu_x * ds_dd - mu_y * ds_dcov, ds_dd, ds_dcov);
+                        // The strip's own pixels' terms (the others belong to other strips).
+                        if (p.x >= left && p.x < left + int(TILE) && p.y >= top && p.y < bottom) ssim_sum += mask * s;
                     }
                 }
-                [[unroll]] for (uint i = 0u; i < RUN; ++i) {
-                    const uvec2 at = uvec2(moment_run * RUN + i, moment_row);
-                    if (at.x >= REGION) break;  // the last run's tail
-                    vec4 moments = vec4(0.0);
-                    [[unroll]] for (uint k = 0u; k < TAPS; ++k) moments += WINDOW[k] * columns[i + k];
-                    const float mu_x = moments.x, mu_y = moments.y;
-                    const float a = 2.0 * mu_x * mu_y + SSIM_C1, b = 2.0 * (moments.w - mu_x * mu_y) + SSIM_C2;
-                    const float c = mu_x * mu_x + mu_y * mu_y + SSIM_C1;
-                    const float d = moments.z - mu_x * mu_x - mu_y * mu_y + SSIM_C2;
-                    const float inv_cd = 1.0 / (c * d);  // the one division: 1/c = d inv_cd, 1/d = c inv_cd
-                    const float s = a * b * inv_cd;
-                    const float ds_dd = -s * c * inv_cd;
-                    const float ds_dcov = 2.0 * a * inv_cd;
-                    const float ds_dmu_x = 2.0 * b * inv_cd * (mu_y - mu_x * a * d * inv_cd);
-                    const float w = -pc.ssim_weight * run_mask[i] * pc.inv_count;
-                    abc[i] = w * vec3(ds_dmu_x - 2.0 * mu_x * ds_dd - mu_y * ds_dcov, ds_dd, ds_dcov);
-                    // The tile's own pixels' terms (the region's others belong to other tiles).
-                    if (all(greaterThanEqual(at, uvec2(RADIUS))) && all(lessThan(at, uvec2(RADIUS + TILE))))
-                        ssim_sum += run_mask[i] * s;
-                }
-            }
-            barrier();  // every invocation is done reading the moments, which A, B, C overwrite
-            if (thread < MOMENT_ROWS) {
-                [[unroll]] for (uint i = 0u; i < RUN; ++i) {
-                    const uint col = moment_run * RUN + i;
-                    if (col < REGION) {
-                        const uint at = moment_row * ABC_PITCH + col;
+                barrier();  // every invocation is done reading the moments, which A, B, C overwrite
+                if (thread < SSIM_ROWS && ssim_row < rows) {
+                    [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
+                        const uint at = ssim_row * ABC_PITCH + ssim_run * SSIM_RUN + i;
                         scratch[at] = abc[i].x;
                         scratch[at + ABC_PLANE] = abc[i].y;
                         scratch[at + 2u * ABC_PLANE] = abc[i].z;
                     }
                 }
-            }
-            barrier();
-            // G of A, B, C along the region's rows, for the tile's columns.
-            if (thread < PLANE_ROWS) {
-                vec3 planes[RUN_INPUTS];
-                [[unroll]] for (uint k = 0u; k < RUN_INPUTS; ++k) {
-                    const uint at = plane_row * ABC_PITCH + plane_run * RUN + k;
-                    planes[k] = vec3(scratch[at], scratch[at + ABC_PLANE], scratch[at + 2u * ABC_PLANE]);
+                barrier();
+                // 3. G of A, B, C along rows, for the tile's columns, into the ring (whose lines
+                // the last tile's gradient read before the barriers above).
+                if (thread < PLANE_ROWS && plane_row < rows) {
+                    vec3 planes[PLANE_RUN + TAPS - 1];
+                    [[unroll]] for (uint k = 0u; k < PLANE_RUN + TAPS - 1; ++k) {
+                        const uint at = plane_row * ABC_PITCH + plane_run * PLANE_RUN + k;
+                        planes[k] = vec3(scratch[at], scratch[at + ABC_PLANE], scratch[at + 2u * ABC_PLANE]);
+                    }
+                    const uint line = RING_OFFSET + ring_line(first + int(plane_row), top) * TILE;
+                    [[unroll]] for (uint i = 0u; i < PLANE_RUN; ++i) {
+                        vec3 sum = vec3(0.0);
+                        [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * planes[i + k];
+                        const uint at = line + plane_run * PLANE_RUN + i;
+                        scratch[at] = sum.x;
+                        scratch[at + RING_PLANE] = sum.y;
+                        scratch[at + 2u * RING_PLANE] = sum.z;
+                    }
                 }
-                [[unroll]] for (uint i = 0u; i < RUN; ++i) {
-                    vec3 sum = vec3(0.0);
-                    [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * planes[i + k];
-                    const uint at = FILTERED_OFFSET + plane_row * TILE + plane_run * RUN + i;
-                    scratch[at] = sum.x;
-                    scratch[at + FILTERED_PLANE] = sum.y;
-                    scratch[at + 2u * FILTERED_PLANE] = sum.z;
+                barrier();
+                if (band < 0) continue;
+                // 4. Tile `band` has its rows: G along columns at this invocation's pixel.
+                const ivec2 pixel = ivec2(left, top + band * int(TILE)) + ivec2(local);
+                vec3 filtered = vec3(0.0);
+                [[unroll]] for (uint k = 0u; k < TAPS; ++k) {
+                    const uint at = RING_OFFSET + ring_line(pixel.y - RADIUS + int(k), top) * TILE + local.x;
+                    filtered += WINDOW[k] * vec3(scratch[at], scratch[at + RING_PLANE], scratch[at + 2u * RING_PLANE]);
+                }
+                if (inside(pixel)) {
+                    const uint index = pixel_index(pixel);
+                    const float x = pc.rendered.v[index][ch];
+                    const uint word = pc.photo.v[index];
+                    const float y = photo_channel(word, ch), mask = photo_mask(word);
+                    // The L1 term; sign(0) = 0, like torch's.
+                    const float gradient =
+                        l1_weight * mask * sign(x - y) + filtered.x + 2.0 * x * filtered.y + y * filtered.z;
+                    if (ch == 0u) pc.gradient.v[index] = vec4(gradient, 0.0, 0.0, 0.0);
+                    else pc.gradient.v[index][ch] = gradient;
+                    l1_sum += mask * abs(x - y);
+                    mse_sum += mask * (x - y) * (x - y);
                 }
             }
-            barrier();
-            // Then along the tile's columns, at this invocation's pixel.
-            vec3 filtered = vec3(0.0);
-            [[unroll]] for (uint k = 0u; k < TAPS; ++k) {
-                const uint at = FILTERED_OFFSET + (local.y + k) * TILE + local.x;
-                filtered += WINDOW[k] * vec3(scratch[at], scratch[at + FILTERED_PLANE], scratch[at + 2u * FILTERED_PLANE]);
-            }
-            gradient[ch] += filtered.x + 2.0 * x[ch] * filtered.y + y[ch] * filtered.z;
-            barrier();  // every invocation is done reading the filtered planes, which the next channel overwrites
         }
-        if (owned) pc.gradient.v[index] = vec4(gradient, 0.0);
     }
 
     // Workgroup sums by a tree in shared memory: same order on every run and device, and no
-    // assumption about the subgroup size. The last barrier of the tile loop ended every read.
+    // assumption about the subgroup size. The last band's barrier ended every read of the
+    // moments' and A, B, C's floats, which these overwrite.
     scratch[thread] = l1_sum;
     scratch[thread + INVOCATIONS] = ssim_sum;
     scratch[thread + 2u * INVOCATIONS] = mse_sum;

@@ -1,5 +1,5 @@
 // The training loss's kernel (loss.comp), recorded by src/train/loss_passes.cpp (LossPasses):
-// one workgroup per 16 x 16 tile.
+// one workgroup per strip of LOSS_SEGMENT_TILES tiles of 16 x 16 pixels, one above the other.
 #ifndef VKSPLAT_TRAIN_LOSS_H
 #define VKSPLAT_TRAIN_LOSS_H
 
@@ -8,6 +8,9 @@
 SHADER_NAMESPACE_BEGIN(train)
 
 SHADER_CONST(uint, LOSS_TILE, 16)  // pixels per tile side = workgroup side: the host sizes the dispatch by it
+// Tiles per strip. Longer strips compute the 10 rows above each strip (which the strip above
+// computes too) less often, shorter ones make more workgroups for small images.
+SHADER_CONST(uint, LOSS_SEGMENT_TILES, 4)
 
 struct LossPush {
     Vec4s rendered;     // rgb, alpha unused
@@ -16,8 +19,9 @@ struct LossPush {
     Vec4s gradient;     // out: dL/d rgb, w = 0
     uint width;
     uint height;
-    uint tiles_x;
-    uint tiles;
+    uint tiles_x;       // tiles per row of the image
+    uint tiles_y;       // tiles per column
+    uint strips;        // tiles_x * ceil(tiles_y / LOSS_SEGMENT_TILES)
     float ssim_weight;  // lambda
     float inv_count;    // 1 / (3 * width * height): every mean divides by all pixels and channels
 };

@@ -10,7 +10,8 @@ namespace vksplat::train {
 namespace {
 
 constexpr uint32_t kTile = shader::train::LOSS_TILE;
-constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks tiles in a grid-stride loop
+constexpr uint32_t kSegmentTiles = shader::train::LOSS_SEGMENT_TILES;
+constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks strips in a grid-stride loop
 
 // The sums of one workgroup, as the kernel writes them (a vec4).
 struct Partial {
@@ -53,8 +54,9 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
                                     std::to_string(inputs.height) + " pixels is too large an image");
     Impl& d = *impl_;
     const uint32_t tiles_x = (inputs.width + kTile - 1) / kTile;
-    const uint32_t tiles = tiles_x * ((inputs.height + kTile - 1) / kTile);
-    const uint32_t groups = std::min(tiles, kMaxGroups);
+    const uint32_t tiles_y = (inputs.height + kTile - 1) / kTile;
+    const uint32_t strips = tiles_x * ((tiles_y + kSegmentTiles - 1) / kSegmentTiles);
+    const uint32_t groups = std::min(strips, kMaxGroups);
     d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
     d.reserve(d.readback, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
     d.groups = groups;
@@ -69,7 +71,8 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
         .width = inputs.width,
         .height = inputs.height,
         .tiles_x = tiles_x,
-        .tiles = tiles,
+        .tiles_y = tiles_y,
+        .strips = strips,
         .ssim_weight = inputs.ssim_weight,
         .inv_count = float(1.0 / d.pixel_channels),
     };
