@@ -22,67 +22,70 @@
 // The window is symmetric, and the sum runs over the image's pixels p only, so the adjoint of the
 // zero-padded filter is the same filter over planes that are 0 outside the image.
 //
-// A workgroup owns a strip of SEGMENT_TILES tiles of 16 x 16 pixels, one above the other, and
+// A workgroup owns a strip of SEGMENT_TILES tiles of 32 x 8 pixels, one above the other, and
 // walks down it channel by channel (grid-stride over strips). The gradient of a tile needs A, B, C
 // over the tile's columns plus 5 each side and its rows plus 5 above and below; those need x and y
 // over 5 more. The workgroup computes all of it in shared memory, so no per-pixel map leaves the
-// chip and the loss is one dispatch. Walking down, each band of 16 rows is filtered once: the
-// filters are separable and the rows a tile shares with the one above (G of A, B, C along rows)
-// stay in a ring; only the columns beside the strip (which the neighbouring strips compute too)
-// and a 10-row band at the strip's top are computed twice. Each filter invocation computes a run
-// of outputs from inputs held in registers, so shared memory is read a few times per output
-// rather than 11. The shared array (15.3 KiB) fits the 16 KiB every Vulkan device offers.
+// chip and the loss is one dispatch. Walking down, each band of rows is filtered once: the filters
+// are separable, and the rows a tile shares with the one above (G of A, B, C along rows) stay in a
+// ring. Only the columns beside the strip (which the neighbouring strips compute too) and a
+// 10-row band at the strip's top are computed twice; wide, short tiles make the columns beside
+// fewer for the same shared memory. Each filter invocation computes a run of outputs from inputs
+// held in registers, so shared memory is read a few times per output rather than 11. The shared
+// array (15 KiB) fits the 16 KiB every Vulkan device offers.
 #extension GL_GOOGLE_include_directive : require
 #extension GL_EXT_control_flow_attributes : require
 
 #include "shaders/train/loss.h"
 layout(push_constant) uniform Push { LossPush pc; };
 
-const uint TILE = LOSS_TILE;                  // pixels per tile side = workgroup side
+const uint TILE_WIDTH = LOSS_TILE_WIDTH;
+const uint TILE_HEIGHT = LOSS_TILE_HEIGHT;     // rows filtered at once, but for the first band
 const uint SEGMENT_TILES = LOSS_SEGMENT_TILES;
-const int RADIUS = 5;                         // window 11 x 11
+const int RADIUS = 5;                          // window 11 x 11
 const uint TAPS = 2 * RADIUS + 1;
-const uint REGION = TILE + 2 * RADIUS;        // columns whose SSIM terms reach the strip
-const uint INPUT = REGION + 2 * RADIUS;       // columns whose values reach those
-const uint BAND = TILE;                       // rows filtered at once (the first band of a strip: 2 * RADIUS)
-const uint INVOCATIONS = TILE * TILE;
+const uint FIRST_BAND = 2 * RADIUS;            // the rows above a strip and its first 5
+const uint BAND_ROWS = max(TILE_HEIGHT, FIRST_BAND);
+const uint REGION = TILE_WIDTH + 2 * RADIUS;   // columns whose SSIM terms reach the strip
+const uint INPUT = REGION + 2 * RADIUS;        // columns whose values reach those
+const uint INVOCATIONS = TILE_WIDTH * TILE_HEIGHT;
 
 // The filters of a band and their runs: outputs per invocation, from RUN + TAPS - 1 inputs.
 // 1. G along columns of x, y, x^2 + y^2, xy, for the band's rows and the INPUT columns;
 const uint MOMENT_RUN = 4;
-const uint MOMENT_COLUMNS = INPUT * (BAND / MOMENT_RUN);
+const uint MOMENT_COLUMNS = INPUT * ((BAND_ROWS + MOMENT_RUN - 1) / MOMENT_RUN);
 // 2. then along rows: the moments, SSIM terms and A, B, C of the band's rows, REGION columns;
 const uint SSIM_RUN = 2;
 const uint SSIM_RUNS = REGION / SSIM_RUN;
-const uint SSIM_ROWS = BAND * SSIM_RUNS;
+const uint SSIM_ROWS = BAND_ROWS * SSIM_RUNS;
 // 3. G of A, B, C along rows, for the band's rows and the tile's columns, into the ring;
 const uint PLANE_RUN = 2;
-const uint PLANE_RUNS = TILE / PLANE_RUN;
-const uint PLANE_ROWS = BAND * PLANE_RUNS;
+const uint PLANE_RUNS = TILE_WIDTH / PLANE_RUN;
+const uint PLANE_ROWS = BAND_ROWS * PLANE_RUNS;
 // 4. then along columns from the ring: the gradient, one pixel of the tile per invocation.
 
 // Shared memory: the column-filtered moments of a band (4 planes), which A, B, C of the band
-// (3 planes) overwrite, and the ring of row-filtered A, B, C (3 planes of RING rows, enough for a
-// tile's 26 rows while the next band's are written). Lines are padded by one float where
-// invocations walk neighbouring lines, so that they hit different banks.
+// (3 planes) overwrite, and the ring of row-filtered A, B, C (3 planes of RING rows: a tile's rows
+// and the 5 each side; the next band overwrites the rows the tile below no longer needs). Lines
+// are padded by one float where invocations walk neighbouring lines, so that they hit different
+// banks.
 const uint MOMENT_PITCH = INPUT + 1;
-const uint MOMENT_PLANE = BAND * MOMENT_PITCH;
+const uint MOMENT_PLANE = BAND_ROWS * MOMENT_PITCH;
 const uint ABC_PITCH = REGION + 1;
-const uint ABC_PLANE = BAND * ABC_PITCH;
-const uint RING = 32;
-const uint RING_PLANE = RING * TILE;
+const uint ABC_PLANE = BAND_ROWS * ABC_PITCH;
+const uint RING = TILE_HEIGHT + 2 * RADIUS;
+const uint RING_PLANE = RING * TILE_WIDTH;
 const uint RING_OFFSET = 4 * MOMENT_PLANE;
 shared float scratch[RING_OFFSET + 3 * RING_PLANE];
 // A compile-time check (glslang rejects an array of size 0): each filter has an invocation per
 // run, runs tile their lines, A, B, C and the final sums fit where the moments were, and the ring
-// holds a tile's rows, and a band's beside the 10 of the band before that its tile still needs.
+// holds a band beside the 10 rows before it that the next tile needs.
 shared float layout_fits[uint(MOMENT_COLUMNS <= INVOCATIONS && SSIM_ROWS <= INVOCATIONS &&
-                              PLANE_ROWS <= INVOCATIONS && BAND % MOMENT_RUN == 0 && REGION % SSIM_RUN == 0 &&
-                              TILE % PLANE_RUN == 0 && 3 * ABC_PLANE <= RING_OFFSET &&
-                              3 * INVOCATIONS <= RING_OFFSET && TILE + 2 * RADIUS <= RING && 2 * RADIUS + BAND <= RING &&
-                              (RING & (RING - 1)) == 0)];
+                              PLANE_ROWS <= INVOCATIONS && REGION % SSIM_RUN == 0 && TILE_WIDTH % PLANE_RUN == 0 &&
+                              3 * ABC_PLANE <= RING_OFFSET && 3 * INVOCATIONS <= RING_OFFSET &&
+                              2 * RADIUS + TILE_HEIGHT <= RING)];
 
-layout(local_size_x = TILE, local_size_y = TILE) in;
+layout(local_size_x = TILE_WIDTH, local_size_y = TILE_HEIGHT) in;
 
 // The normalised 1D Gaussian of sigma 1.5 over -5..5 (computed in double, rounded to float). The
 // 2D window is its outer product, so the filter is separable.
@@ -120,17 +123,18 @@ void main() {
     const uint plane_run = thread % PLANE_RUNS, plane_row = thread / PLANE_RUNS;
 
     for (uint strip = gl_WorkGroupID.x; strip < pc.strips; strip += gl_NumWorkGroups.x) {
-        const int left = int(strip % pc.tiles_x * TILE);
-        const int top = int(strip / pc.tiles_x * SEGMENT_TILES * TILE);
+        const int left = int(strip % pc.tiles_x * TILE_WIDTH);
+        const int top = int(strip / pc.tiles_x * SEGMENT_TILES * TILE_HEIGHT);
         const uint tiles = min(SEGMENT_TILES, pc.tiles_y - strip / pc.tiles_x * SEGMENT_TILES);
-        const int bottom = min(top + int(tiles * TILE), int(pc.height));  // the strip's rows end here
+        const int bottom = min(top + int(tiles * TILE_HEIGHT), int(pc.height));  // the strip's rows end here
 
         [[unroll]] for (uint ch = 0u; ch < 3u; ++ch) {
             // Band -1 is rows top - 5 .. top + 4, which the first tile needs from above and
-            // beside; band t >= 0 is rows 5 .. 20 of tile t, after which tile t has all it needs.
+            // beside; band t >= 0 is the rows from 5 below tile t's first to 5 below its last,
+            // after which tile t has all it needs.
             for (int band = -1; band < int(tiles); ++band) {
-                const int first = band < 0 ? top - RADIUS : top + band * int(TILE) + RADIUS;
-                const uint rows = band < 0 ? uint(2 * RADIUS) : BAND;
+                const int first = band < 0 ? top - RADIUS : top + band * int(TILE_HEIGHT) + RADIUS;
+                const uint rows = band < 0 ? FIRST_BAND : TILE_HEIGHT;
 
                 // 1. G along columns of x, y, x^2 + y^2 and xy: a run of rows of one input column.
                 // Pixels outside the image read as 0 (the zero padding of the reference's
@@ -148,9 +152,11 @@ void main() {
                         products[k] = vec4(v, dot(v, v), v.x * v.y);
                     }
                     [[unroll]] for (uint i = 0u; i < MOMENT_RUN; ++i) {
+                        const uint row = moment_run * MOMENT_RUN + i;
+                        if (row >= rows) break;  // the last run's tail
                         vec4 sum = vec4(0.0);
                         [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * products[i + k];
-                        const uint at = (moment_run * MOMENT_RUN + i) * MOMENT_PITCH + moment_column;
+                        const uint at = row * MOMENT_PITCH + moment_column;
                         [[unroll]] for (uint m = 0u; m < 4u; ++m) scratch[at + m * MOMENT_PLANE] = sum[m];
                     }
                 }
@@ -182,7 +188,8 @@ void main() {
                         const float w = -pc.ssim_weight * mask * pc.inv_count;
                         abc[i] = w * vec3(ds_dmu_x - 2.0 * mu_x * ds_dd - mu_y * ds_dcov, ds_dd, ds_dcov);
                         // The strip's own pixels' terms (the others belong to other strips).
-                        if (p.x >= left && p.x < left + int(TILE) && p.y >= top && p.y < bottom) ssim_sum += mask * s;
+                        if (p.x >= left && p.x < left + int(TILE_WIDTH) && p.y >= top && p.y < bottom)
+                            ssim_sum += mask * s;
                     }
                 }
                 barrier();  // every invocation is done reading the moments, which A, B, C overwrite
@@ -203,7 +210,7 @@ void main() {
                         const uint at = plane_row * ABC_PITCH + plane_run * PLANE_RUN + k;
                         planes[k] = vec3(scratch[at], scratch[at + ABC_PLANE], scratch[at + 2u * ABC_PLANE]);
                     }
-                    const uint line = RING_OFFSET + ring_line(first + int(plane_row), top) * TILE;
+                    const uint line = RING_OFFSET + ring_line(first + int(plane_row), top) * TILE_WIDTH;
                     [[unroll]] for (uint i = 0u; i < PLANE_RUN; ++i) {
                         vec3 sum = vec3(0.0);
                         [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * planes[i + k];
@@ -216,10 +223,10 @@ void main() {
                 barrier();
                 if (band < 0) continue;
                 // 4. Tile `band` has its rows: G along columns at this invocation's pixel.
-                const ivec2 pixel = ivec2(left, top + band * int(TILE)) + ivec2(local);
+                const ivec2 pixel = ivec2(left, top + band * int(TILE_HEIGHT)) + ivec2(local);
                 vec3 filtered = vec3(0.0);
                 [[unroll]] for (uint k = 0u; k < TAPS; ++k) {
-                    const uint at = RING_OFFSET + ring_line(pixel.y - RADIUS + int(k), top) * TILE + local.x;
+                    const uint at = RING_OFFSET + ring_line(pixel.y - RADIUS + int(k), top) * TILE_WIDTH + local.x;
                     filtered += WINDOW[k] * vec3(scratch[at], scratch[at + RING_PLANE], scratch[at + 2u * RING_PLANE]);
                 }
                 if (inside(pixel)) {

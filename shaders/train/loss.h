@@ -1,5 +1,5 @@
 // The training loss's kernel (loss.comp), recorded by src/train/loss_passes.cpp (LossPasses):
-// one workgroup per strip of LOSS_SEGMENT_TILES tiles of 16 x 16 pixels, one above the other.
+// one workgroup per strip of LOSS_SEGMENT_TILES tiles, one above the other.
 #ifndef VKSPLAT_TRAIN_LOSS_H
 #define VKSPLAT_TRAIN_LOSS_H
 
@@ -7,10 +7,12 @@
 
 SHADER_NAMESPACE_BEGIN(train)
 
-SHADER_CONST(uint, LOSS_TILE, 16)  // pixels per tile side = workgroup side: the host sizes the dispatch by it
+// A tile's pixels = the workgroup's invocations: the host sizes the dispatch by them.
+SHADER_CONST(uint, LOSS_TILE_WIDTH, 32)
+SHADER_CONST(uint, LOSS_TILE_HEIGHT, 8)
 // Tiles per strip. Longer strips compute the 10 rows above each strip (which the strip above
 // computes too) less often, shorter ones make more workgroups for small images.
-SHADER_CONST(uint, LOSS_SEGMENT_TILES, 4)
+SHADER_CONST(uint, LOSS_SEGMENT_TILES, 8)
 
 struct LossPush {
     Vec4s rendered;     // rgb, alpha unused

@@ -9,7 +9,8 @@
 namespace vksplat::train {
 namespace {
 
-constexpr uint32_t kTile = shader::train::LOSS_TILE;
+constexpr uint32_t kTileWidth = shader::train::LOSS_TILE_WIDTH;
+constexpr uint32_t kTileHeight = shader::train::LOSS_TILE_HEIGHT;
 constexpr uint32_t kSegmentTiles = shader::train::LOSS_SEGMENT_TILES;
 constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks strips in a grid-stride loop
 
@@ -53,8 +54,8 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
         throw std::invalid_argument("training loss: " + std::to_string(inputs.width) + " x " +
                                     std::to_string(inputs.height) + " pixels is too large an image");
     Impl& d = *impl_;
-    const uint32_t tiles_x = (inputs.width + kTile - 1) / kTile;
-    const uint32_t tiles_y = (inputs.height + kTile - 1) / kTile;
+    const uint32_t tiles_x = (inputs.width + kTileWidth - 1) / kTileWidth;
+    const uint32_t tiles_y = (inputs.height + kTileHeight - 1) / kTileHeight;
     const uint32_t strips = tiles_x * ((tiles_y + kSegmentTiles - 1) / kSegmentTiles);
     const uint32_t groups = std::min(strips, kMaxGroups);
     d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");

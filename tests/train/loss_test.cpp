@@ -283,8 +283,9 @@ TEST_F(Loss, MatchesTheReference) {
         int width, height;
         Content content;
     };
-    // Sizes that are not multiples of the 16-pixel tile, thinner than a tile, or thinner than the
-    // window, so that tiles' regions reach past every edge of the image.
+    // Sizes that are not multiples of the tile (32 x 8), thinner than a tile, or thinner than the
+    // window, so that tiles' regions reach past every edge of the image; heights of more than one
+    // strip of tiles (64 rows).
     const Case cases[] = {{64, 48, Content::close},     {1, 1, Content::noise},   {130, 75, Content::noise},
                           {7, 5, Content::close},       {33, 17, Content::noise}, {130, 75, Content::close},
                           {1, 1, Content::close},       {37, 29, Content::identical}, {37, 23, Content::noise},
@@ -334,7 +335,7 @@ TEST_F(Loss, GradientMatchesDifferencesOfItsLoss) {
     struct Probe {
         int x, y;
     };
-    const Probe probes[] = {{0, 0}, {15, 7}, {16, 7}, {36, 22}, {20, 16}, {31, 12}};
+    const Probe probes[] = {{0, 0}, {15, 7}, {16, 8}, {36, 22}, {20, 16}, {31, 12}, {32, 12}};
     const float h = 1e-2f;
     // Off the L1 kink by more than h: a difference across the kink measures the kink.
     for (const Probe& probe : probes)
