@@ -116,8 +116,8 @@ void main() {
     const float l1_weight = (1.0 - pc.ssim_weight) * pc.inv_count;
     float l1_sum = 0.0, ssim_sum = 0.0, mse_sum = 0.0;
 
-    // This invocation's line and run in each filter (runs vary fastest where an invocation's
-    // neighbours should write neighbouring floats).
+    // This invocation's line and run in each filter: neighbouring invocations take neighbouring
+    // columns or runs, so that their shared-memory accesses spread over the banks.
     const uint moment_column = thread % INPUT, moment_run = thread / INPUT;
     const uint ssim_run = thread % SSIM_RUNS, ssim_row = thread / SSIM_RUNS;
     const uint plane_run = thread % PLANE_RUNS, plane_row = thread / PLANE_RUNS;
