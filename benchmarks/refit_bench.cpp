@@ -7,6 +7,10 @@
 //
 //   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
 //   refit_bench lego.ply ... --drop 0.8 --rounds 2   (blend ranking, 80% dropped, two prune-re-fit rounds)
+//   refit_bench lego.ply ... --drop 0.8 --rounds 3 --position-lr decay   (iterations by the fraction dropped,
+//     as a bare `prune --recover` takes them: jobs::default_recover_iterations)
+//   refit_bench lego.ply ... --drop 0.8 --rounds 3 --position-lr decay --seconds 60   (a wall-time budget,
+//     `prune --recover-seconds 60`), --lr sh_dc=0.5 --lr opacity=0.5 (rates times a factor)
 //   refit_bench bonsai.spz ... --keep keep85.npy --subject --save refit.ply
 //     (what `vksplat cluster prune --recover N` re-fits: the Gaussians the mask keeps, the loss of each
 //     training view masked to the subject region of the whole scene's render, quality = PSNR inside
@@ -17,6 +21,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <string>
 
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/eval/subject_region.hpp"
@@ -38,15 +43,23 @@ int main(int argc, char** argv) {
     std::string scene_path, cameras_path, photos_dir, device, keep_path, save;
     bool subject_only = false, whole_loss = false;
     std::vector<float> background{0, 0, 0};
-    uint64_t iterations = 5000;
-    std::optional<double> drop;
+    std::optional<uint64_t> iterations;  // unset: 5000, or with --drop by the fraction dropped
+    std::optional<double> drop, seconds;
+    std::vector<std::string> rate_factors;
     int rounds = 1;
     std::string position_lr = "final";
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
     app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
     app.add_option("--background", background)->delimiter(',')->expected(3);
-    app.add_option("--iters", iterations);
+    auto* iters = app.add_option("--iters", iterations, "iterations (default 5000; with --drop: by the fraction dropped)");
+    app.add_option("--seconds", seconds, "instead of --iters: a wall-time budget for the whole re-fit")->excludes(iters);
+    app.add_option("--lr", rate_factors,
+                   "GROUP=F: that group's learning rate times F (sh_dc, sh_rest, opacity, scale, rotation,\n"
+                   "position: both ends of its decay); repeatable")
+        ->each([](const std::string& text) {
+            if (text.find('=') == std::string::npos) throw CLI::ValidationError("--lr", "wants GROUP=F");
+        });
     app.add_option("--device", device);
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
@@ -69,7 +82,21 @@ int main(int argc, char** argv) {
         const auto cameras = io::read_cameras(cameras_path);
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         jobs::FinetuneOptions options;
-        options.iterations = iterations;
+        options.iterations = iterations.value_or(options.iterations);
+        options.seconds = seconds;
+        for (const std::string& text : rate_factors) {
+            const std::string group = text.substr(0, text.find('='));
+            const double factor = std::stod(text.substr(text.find('=') + 1));
+            train::LearningRates& r = options.train.rates;
+            if (group == "sh_dc") r.sh_dc *= factor;
+            else if (group == "sh_rest") r.sh_rest *= factor;
+            else if (group == "opacity") r.opacity *= factor;
+            else if (group == "scale") r.scale *= factor;
+            else if (group == "rotation") r.rotation *= factor;
+            else if (group == "position") r.position_initial *= factor, r.position_final *= factor;
+            else throw InputError("--lr " + text, "names no learning rate");
+            std::printf("learning rate %s x %g\n", group.c_str(), factor);
+        }
         options.train.background = {background[0], background[1], background[2]};
         if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
         const auto test = jobs::default_test_views(cameras);
@@ -106,8 +133,7 @@ int main(int argc, char** argv) {
             }
             return q;
         };
-        std::printf("%s: %zu Gaussians on %s, %llu iterations\n", scene_path.c_str(), cloud.size(),
-                    context.info().name.c_str(), static_cast<unsigned long long>(iterations));
+        std::printf("%s: %zu Gaussians on %s\n", scene_path.c_str(), cloud.size(), context.info().name.c_str());
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
         const auto report = [](const train::LoopStatus& s) {
             if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
@@ -133,15 +159,27 @@ int main(int argc, char** argv) {
             const double pruned = quality(cloud.subset(ranking.keep_best(keep))).mean_psnr;
             jobs::RecoverOptions recover;
             recover.iterations = iterations;
+            recover.seconds = seconds;
             recover.rounds = rounds;
             recover.finetune = options;
+            if (seconds)
+                std::printf("a budget of %g s over %d rounds\n", *seconds, rounds);
+            else
+                std::printf("%llu iterations over %d rounds%s\n",
+                            static_cast<unsigned long long>(iterations.value_or(
+                                jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())))),
+                            rounds, iterations ? "" : " (by the fraction dropped)");
             const auto recovered = jobs::prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos,
                                                            recover, quality, [&](int, const train::LoopStatus& s) {
                                                                report(s);
                                                            });
             for (size_t r = 0; r < recovered.rounds.size(); ++r)
-                std::printf("round %zu: %zu Gaussians, %llu iterations, %.1f s\n", r + 1, recovered.rounds[r].kept,
+                std::printf("round %zu: %zu Gaussians, %llu iterations%s, %.1f s\n", r + 1, recovered.rounds[r].kept,
                             static_cast<unsigned long long>(recovered.rounds[r].refit.iterations),
+                            seconds ? (" of " + std::to_string(recovered.rounds[r].refit.planned_iterations) +
+                                       " planned by the budget")
+                                          .c_str()
+                                    : "",
                             recovered.rounds[r].refit.seconds);
             result = recovered.rounds.back().refit;
             std::printf("test PSNR (%zu views): unpruned %.3f, %.0f%% dropped %.3f (%+.3f), re-fitted %.3f (%+.3f)\n",

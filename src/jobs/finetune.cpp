@@ -66,7 +66,7 @@ void check_time_budget(const FinetuneOptions& options) {
 // How long a trainer of `cloud` takes to be made and to step, timed on one made for the purpose:
 // the trainer the run steps must know its iteration count when it is made (the position rate
 // decays over it), so it cannot time itself. The first step, which grows the buffers, is not
-// counted; the others stop at 50 or about 2% of `budget`, whichever comes first.
+// counted; the others stop at 50 or about 2% of `budget`, whichever comes first (at least one).
 struct StepTime {
     double make_seconds = 0, step_seconds = 0;
 };
@@ -80,7 +80,7 @@ StepTime time_steps(const gpu::Context& context, const GaussianCloud& cloud, con
     StepTime time{seconds_since(start), 0};
     std::vector<double> steps;
     const auto timed_from = Clock::now();
-    for (uint64_t i = 0; steps.size() < kMostSteps && (steps.size() < 2 || seconds_since(timed_from) < kShare * budget);
+    for (uint64_t i = 0; steps.size() < kMostSteps && (steps.empty() || seconds_since(timed_from) < kShare * budget);
          ++i) {
         const size_t view = train::training_view(i, seed, views);
         const auto step_start = Clock::now();
