@@ -23,7 +23,7 @@ namespace {
 constexpr double kLambda = 0.2;
 constexpr double kC1 = 0.01 * 0.01, kC2 = 0.03 * 0.03;
 
-// A photo channel as the shaders read it (loss_window.glsl's photo_channel): bit for bit.
+// A photo channel as the shader reads it (loss.comp's photo_channel): bit for bit.
 float photo_channel(uint32_t word, int ch) { return float((word >> (8 * ch)) & 255u) * (1.0f / 255.0f); }
 
 // A rendered image (vec4 per pixel, as the blend writes it) and a photo (RGBA8 words, alpha 0 =
