@@ -21,6 +21,7 @@
 #include "vksplat/jobs/render_views.hpp"
 #include "vksplat/prune/accumulate.hpp"
 #include "vksplat/eval/quality.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
 
@@ -55,6 +56,14 @@ void check_options(const SweepOptions& options, size_t camera_count) {
     if (options.timing_repetitions < 0) throw InputError("timing repetitions", "must be 0 or more");
     if (options.timing_warmup < 0) throw InputError("timing warm-up", "must be 0 or more");
     if (!(options.sheet_max_error > 0)) throw InputError("sheet max error", "must be positive");
+    for (const std::string& format : options.size_formats) {
+        try {
+            io::check_scene_writable(fs::temp_directory_path() / "vksplat-size", io::WriteMode::overwrite, format);
+        } catch (const InputError&) {
+            throw InputError("size format '" + format + "'", "is not one vksplat writes (ply, compressed-ply, splat, "
+                                                             "spz, spz-v4, sog, gltf)");
+        }
+    }
     for (const auto* views : {&options.test_views, &options.train_views})
         for (size_t view : *views)
             if (view >= camera_count)

@@ -1,5 +1,8 @@
 // The sweep's charts as SVG files (report::write_svg_chart): quality against the dropped fraction,
-// the time per frame and the size, one line per method; per-view PSNR across SH degrees.
+// the time per frame and the size, one line per method; the best method's quality against its
+// file's size in each format, pruned and re-fitted; per-view PSNR across SH degrees.
+#include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -31,6 +34,47 @@ std::string decimals(double value, int places) {
     char text[48];
     std::snprintf(text, sizeof(text), "%.*f", places, value);
     return text;
+}
+
+// "SPZ", "compressed PLY": a scene format (io::write_scene's name) as the charts say it.
+std::string format_label(const std::string& format) {
+    if (format == "compressed-ply") return "compressed PLY";
+    if (format == "spz-v4") return "SPZ v4";
+    if (format == "gltf") return "glTF";
+    if (format == "splat") return "splat";
+    std::string upper = format;
+    for (char& c : upper) c = char(std::toupper(static_cast<unsigned char>(c)));
+    return upper;
+}
+
+// The model's file in `format`, in megabytes (10^6 bytes); NaN (no point) when it was not sized so.
+double file_megabytes(const ModelMeasure& measure, const std::string& format) {
+    for (const auto& [name, bytes] : measure.file_bytes)
+        if (name == format) return double(bytes) / 1e6;
+    return std::nan("");
+}
+
+// PSNR against file size for `method` and its re-fitted rows, one line per format and each re-fitted
+// one beside it: which format and whether to re-fit, at a glance.
+report::ChartSpec size_by_format(const SweepResult& result, const std::vector<std::string>& formats,
+                                 const std::string& method) {
+    report::ChartSpec spec;
+    spec.title = "PSNR against file size by format (" + method + ")";
+    spec.x_label = "file size (MB; log scale)";
+    spec.y_label = "PSNR (dB)";
+    spec.log_x = true;
+    for (const std::string& format : formats)
+        for (const std::string& rows : {method, method + kRecoverSuffix}) {
+            report::Series series{format_label(format) + (rows == method ? "" : " re-fitted"), {}, {}};
+            for (const SweepRow& row : result.rows)
+                if (row.method == rows) {
+                    series.x.push_back(file_megabytes(row.measure, format));
+                    series.y.push_back(row.measure.psnr);
+                }
+            if (!series.x.empty()) spec.series.push_back(std::move(series));
+        }
+    spec.reference_lines = {{result.unpruned.psnr, "unpruned " + decimals(result.unpruned.psnr, 2) + " dB"}};
+    return spec;
 }
 
 report::ReportImage write_chart(const fs::path& out_dir, const std::string& file, const report::ChartSpec& spec,
@@ -104,6 +148,32 @@ SweepCharts write_sweep_charts(const fs::path& out_dir, const SweepResult& resul
                                        "PSNR against megabytes (unpruned: " +
                                            decimals(double(result.unpruned.bytes) / 1e6, 2) + " MB)",
                                        mode));
+
+    // Each size format: the best method by format first, then every method in each format.
+    std::vector<std::string> formats;
+    std::string unpruned_sizes;
+    for (const auto& [format, bytes] : result.unpruned.file_bytes) {
+        formats.push_back(format);
+        unpruned_sizes += (unpruned_sizes.empty() ? "" : ", ") + format_label(format) + " " +
+                          decimals(double(bytes) / 1e6, 2) + " MB";
+    }
+    if (!formats.empty())
+        charts.sweep.push_back(write_chart(out_dir, "psnr_vs_mb_by_format.svg",
+                                           size_by_format(result, formats, result.best_method),
+                                           "PSNR against the file's megabytes in each format for the best method, " +
+                                               result.best_method + ", and re-fitted where the sweep re-fitted "
+                                               "(unpruned: " + unpruned_sizes + ")",
+                                           mode));
+    for (const std::string& format : formats) {
+        if (format == "ply") continue;  // psnr_vs_mb.svg
+        spec.title = "PSNR against size as " + format_label(format);
+        spec.x_label = "size as " + format_label(format) + " (MB; log scale)";
+        spec.series = per_method(rows, [&](const SweepRow& r) { return file_megabytes(r.measure, format); }, psnr);
+        charts.sweep.push_back(write_chart(out_dir, "psnr_vs_mb_" + format + ".svg", spec,
+                                           "PSNR against megabytes as " + format_label(format) + " (unpruned: " +
+                                               decimals(file_megabytes(result.unpruned, format), 2) + " MB)",
+                                           mode));
+    }
 
     std::vector<std::string> degrees;
     std::vector<std::vector<double>> per_view(result.test_view_names.size());

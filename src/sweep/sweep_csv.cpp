@@ -23,12 +23,21 @@ std::string field(const std::string& text) {
     return quoted + '"';
 }
 
+// "bytes_compressed_ply": the column of a size format's bytes (a name Python and R take as is).
+std::string bytes_column(std::string format) {
+    for (char& c : format)
+        if (c == '-') c = '_';
+    return "bytes_" + format;
+}
+
 }  // namespace
 
 void write_sweep_csv(const std::filesystem::path& path, const SweepResult& result, io::WriteMode mode) {
     io::write_file_atomically(path, mode, [&](std::ostream& out) {
         out << "method,fraction,dropped,gaussians,bytes,megabytes,psnr,delta_psnr,ssim,psnr_vs_unpruned,"
-               "ssim_vs_unpruned,ms_per_frame,recover_iterations,recover_seconds,ms_min,ms_max\n";
+               "ssim_vs_unpruned,ms_per_frame,recover_iterations,recover_seconds,ms_min,ms_max";
+        for (const auto& [format, bytes] : result.unpruned.file_bytes) out << ',' << bytes_column(format);
+        out << '\n';
         for (const SweepRow& row : result.rows) {
             const ModelMeasure& m = row.measure;
             out << row.method << ',' << fraction_label(row.fraction) << ',' << number(row.dropped, 6)
@@ -36,8 +45,9 @@ void write_sweep_csv(const std::filesystem::path& path, const SweepResult& resul
                 << number(m.psnr, 4) << ',' << number(row.delta_psnr, 4) << ',' << number(m.ssim, 5) << ','
                 << number(m.psnr_vs_unpruned, 4) << ',' << number(m.ssim_vs_unpruned, 5) << ','
                 << number(m.ms_per_frame, 3) << ',' << row.recover_iterations << ','
-                << number(row.recover_seconds, 2) << ',' << number(m.ms_min, 3) << ',' << number(m.ms_max, 3)
-                << '\n';
+                << number(row.recover_seconds, 2) << ',' << number(m.ms_min, 3) << ',' << number(m.ms_max, 3);
+            for (const auto& [format, bytes] : m.file_bytes) out << ',' << bytes;
+            out << '\n';
         }
     });
 }

@@ -1,5 +1,5 @@
 // One model of the sweep measured: quality on the test views against the photos and against the
-// unpruned render, GPU time per frame, size.
+// unpruned render, GPU time per frame, size as PLY and as a file of each format asked for.
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -8,6 +8,7 @@
 #include "sweep_parts.hpp"
 #include "vksplat/eval/metrics.hpp"
 #include "vksplat/bench/benchmark.hpp"
+#include "vksplat/prune/size_budget.hpp"
 
 namespace vksplat::sweep::detail {
 namespace {
@@ -81,6 +82,8 @@ ModelMeasure measure_model(Renderer& renderer, const GaussianCloud& cloud, const
     m.ms_per_frame = time.median;
     m.ms_min = time.min;
     m.ms_max = time.max;
+    for (const std::string& format : options.size_formats)
+        m.file_bytes.emplace_back(format, prune::scene_file_bytes(cloud, format));
     return m;
 }
 

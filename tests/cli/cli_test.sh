@@ -338,6 +338,10 @@ expect bench-reads-spz 0 "mean of per-view medians" -- "$vksplat" bench "$work/d
   --reps 1 --warmup 0
 expect prune-reads-spz 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo.spz" --cameras "$work/cameras.json" \
   --method opacity --ratio 0.5 -o "$work/half_from_spz.ply"
+# Sweep --sizes: each model sized by a writer, so a format vksplat only reads is refused before any work.
+expect sweep-sizes-unwritable 2 "size format 'gsplat-pt': is not one vksplat writes" -- "$vksplat" sweep \
+  "$work/demo.spz" --cameras "$work/three.json" --images "$work/photos3" --out "$work/sweep_sizes" --methods blend \
+  --sizes spz,gsplat-pt
 # Sweep --recover: a re-fitted row beside the pruned one.
 expect sweep-recover 0 "blend+recover" -- "$vksplat" sweep "$work/demo.spz" --cameras "$work/three.json" \
   --images "$work/photos3" --background 1,1,1 --out "$work/sweep_recover" --methods blend --fractions 0.5 \

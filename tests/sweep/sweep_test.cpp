@@ -23,6 +23,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/report/chart.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
+#include "vksplat/io/formats.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
@@ -139,7 +140,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     EXPECT_EQ(csv[0], (std::vector<std::string>{"method", "fraction", "dropped", "gaussians", "bytes", "megabytes",
                                                 "psnr", "delta_psnr", "ssim", "psnr_vs_unpruned", "ssim_vs_unpruned",
                                                 "ms_per_frame", "recover_iterations", "recover_seconds", "ms_min",
-                                                "ms_max"}));
+                                                "ms_max", "bytes_ply", "bytes_compressed_ply", "bytes_spz"}));
     const size_t candidates = n - result.lossless_dropped;
     for (size_t m = 0; m < methods.size(); ++m)
         for (size_t f = 0; f < fractions.size(); ++f) {
@@ -147,7 +148,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
             const sweep::SweepRow& row = result.rows[i];
             const auto& cells = csv[1 + i];
             SCOPED_TRACE(methods[m] + " at " + std::to_string(fractions[f]));
-            ASSERT_EQ(cells.size(), 16u);
+            ASSERT_EQ(cells.size(), 19u);
             EXPECT_EQ(cells[12], "0") << "prune-only rows were not re-fitted";
             EXPECT_EQ(cells[0], methods[m]);
             EXPECT_EQ(std::stod(cells[1]), fractions[f]);
@@ -170,6 +171,9 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
             EXPECT_GE(row.measure.ms_max, row.measure.ms_per_frame);
             EXPECT_NEAR(std::stod(cells[14]), row.measure.ms_min, 1e-3);
             EXPECT_NEAR(std::stod(cells[15]), row.measure.ms_max, 1e-3);
+            EXPECT_EQ(cells[16], cells[4]) << "PLY written and PLY counted";
+            ASSERT_EQ(row.measure.file_bytes.size(), 3u);
+            for (size_t k = 0; k < 3; ++k) EXPECT_EQ(std::stoul(cells[16 + k]), row.measure.file_bytes[k].second);
             EXPECT_EQ(row.measure.view_psnr.size(), cameras.size());
             if (fractions[f] == 0) {
                 // The lossless pass alone: bit-identical on the views it was gathered over.
@@ -228,7 +232,7 @@ TEST_F(Sweep, EveryMethodAtEveryFractionWithChartsSheetsAndReport) {
     const std::string html = read_text(result.report);
     EXPECT_EQ(result.report, fs::absolute(out / "report.html"));
     for (const char* chart : {"psnr_vs_fraction", "delta_psnr_vs_fraction", "ssim_vs_fraction", "psnr_vs_ms",
-                              "psnr_vs_mb", "psnr_by_sh_degree"}) {
+                              "psnr_vs_mb", "psnr_vs_mb_compressed-ply", "psnr_vs_mb_spz", "psnr_by_sh_degree"}) {
         const std::string relative = std::string("charts/") + chart + ".svg";
         SCOPED_TRACE(relative);
         ASSERT_TRUE(fs::is_regular_file(out / relative));
@@ -316,7 +320,71 @@ TEST_F(Sweep, RecoverAddsARefittedRowBesideEachPrunedOne) {
     EXPECT_EQ(csv[3][12], "60");
     // Its own curve in the charts, and its re-fit time in the report's table.
     EXPECT_EQ(count(read_text(out / "charts" / "psnr_vs_fraction.svg"), "class=\"series\""), 2u);
+    const std::string by_format = read_text(out / "charts" / "psnr_vs_mb_by_format.svg");
+    EXPECT_EQ(count(by_format, "class=\"series\""), 2 * quick.size_formats.size()) << "each format pruned and re-fitted";
+    EXPECT_NE(by_format.find("SPZ re-fitted"), std::string::npos);
     EXPECT_NE(read_text(result.report).find("re-fit s"), std::string::npos);
+}
+
+// Each model is sized as a file of each format asked for, by the writers themselves: the bytes
+// io::write_scene writes, in sweep.csv's bytes_<format> columns, and charted one line per format.
+TEST_F(Sweep, SizesEveryModelInEachFormatAsItsWriterDoes) {
+    const fs::path out = dir / "out";
+    auto o = options(out);
+    o.methods = {prune::ScoreMethod::blend};
+    o.fractions = {0, 0.5, 0.9};
+    o.compare_scoring_cost = false;
+    o.sheet_fractions = {};
+    o.size_formats = {"spz", "compressed-ply", "sog", "ply"};
+    const sweep::SweepResult result = sweep::sweep_scene(*renderer, cloud, cameras, o, {});
+    ASSERT_EQ(result.rows.size(), 3u);
+
+    // The unpruned scene as each writer writes it (sanitising changed nothing).
+    ASSERT_FALSE(result.sanitize.changed());
+    ASSERT_EQ(result.unpruned.file_bytes.size(), 4u);
+    for (size_t k = 0; k < 4; ++k) {
+        const auto& [format, bytes] = result.unpruned.file_bytes[k];
+        EXPECT_EQ(format, o.size_formats[k]);
+        const fs::path file = dir / ("unpruned_" + format + (format == "sog" ? ".sog" : ".bin"));
+        io::write_scene(cloud, file, io::WriteMode::refuse_existing, format);
+        EXPECT_EQ(bytes, fs::file_size(file)) << format;
+    }
+    const auto csv = read_csv(out / "sweep.csv");
+    ASSERT_EQ(csv.size(), 4u);
+    EXPECT_EQ(std::vector<std::string>(csv[0].end() - 4, csv[0].end()),
+              (std::vector<std::string>{"bytes_spz", "bytes_compressed_ply", "bytes_sog", "bytes_ply"}));
+    for (size_t r = 0; r < result.rows.size(); ++r) {
+        const sweep::ModelMeasure& m = result.rows[r].measure;
+        SCOPED_TRACE(result.rows[r].fraction);
+        ASSERT_EQ(m.file_bytes.size(), 4u);
+        EXPECT_EQ(m.file_bytes[3].second, m.bytes) << "the PLY written is the PLY counted";
+        for (size_t k = 0; k < 4; ++k) {
+            EXPECT_EQ(std::stoul(csv[1 + r][csv[1 + r].size() - 4 + k]), m.file_bytes[k].second);
+            if (r > 0) EXPECT_LT(m.file_bytes[k].second, result.rows[r - 1].measure.file_bytes[k].second);
+        }
+    }
+    // One line per format, in the order asked, each through every fraction, x in megabytes.
+    const std::string chart = read_text(out / "charts" / "psnr_vs_mb_by_format.svg");
+    EXPECT_EQ(count(chart, "class=\"series\""), 4u);
+    EXPECT_LT(chart.find(">SPZ<"), chart.find(">compressed PLY<"));
+    EXPECT_LT(chart.find(">compressed PLY<"), chart.find(">SOG<"));
+    EXPECT_EQ(count(chart, "class=\"marker\""), 4 * result.rows.size());
+    for (const char* each : {"psnr_vs_mb_spz", "psnr_vs_mb_compressed-ply", "psnr_vs_mb_sog"})
+        EXPECT_NE(read_text(result.report).find(std::string("charts/") + each + ".svg"), std::string::npos) << each;
+
+    for (const char* unwritable : {"gsplat-pt", "xyz"}) {
+        auto bad = options(dir / (std::string("refused_") + unwritable));
+        bad.size_formats = {"spz", unwritable};
+        try {
+            sweep::sweep_scene(*renderer, cloud, cameras, bad, {});
+            ADD_FAILURE() << unwritable << " not refused";
+        } catch (const InputError& e) {
+            EXPECT_NE(std::string(e.what()).find(std::string("size format '") + unwritable + "': is not one vksplat writes"),
+                      std::string::npos)
+                << e.what();
+        }
+        EXPECT_FALSE(fs::exists(dir / (std::string("refused_") + unwritable))) << "refused before any work";
+    }
 }
 
 // The time left the sweep reports covers all of it, re-fits included (issue 32: a re-fit's 20
