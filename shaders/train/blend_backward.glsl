@@ -1,23 +1,48 @@
-#if !defined(FLOAT_ATOMICS) || !defined(FIXED_POINT_SUMS)
-#error define FLOAT_ATOMICS and FIXED_POINT_SUMS before including blend_backward.glsl
+#if !defined(FLOAT_ATOMICS) || !defined(FIXED_POINT_SUMS) || !defined(PER_SPLAT)
+#error define FLOAT_ATOMICS, FIXED_POINT_SUMS and PER_SPLAT before including blend_backward.glsl
 #endif
 // The blend's backward pass, included after its push constants `pc` (BlendBackwardPush,
 // shaders/train/differentiable_renderer.h) by blend_backward.comp (FLOAT_ATOMICS 1: the device adds
 // floats atomically), blend_backward_cas.comp (0: a compare-and-swap loop, for devices without
-// VK_EXT_shader_atomic_float; the same sums, slower, and in either case their order varies) and
-// blend_backward_fixed.comp (FIXED_POINT_SUMS 1: 64-bit integer sums, the same in any order).
+// VK_EXT_shader_atomic_float; the same sums, slower, and in either case their order varies),
+// blend_backward_fixed.comp (FIXED_POINT_SUMS 1: 64-bit integer sums, the same in any order), and
+// their per-splat forms blend_backward_per_splat.comp and blend_backward_per_splat_cas.comp
+// (PER_SPLAT 1, below).
 //
-// One workgroup per tile, one thread per pixel, the pixels in blend_body.glsl's order. Each pixel
-// replays the splats it walked (list positions below its `last`) back to front, recovering the
-// transmittance in front of each splat from the final one (T_j = T_{j+1} / (1 - alpha_j)) and
+// One workgroup per tile, one invocation per pixel, the pixels in blend_body.glsl's order. Each
+// pixel replays the splats it walked (list positions below its `last`) back to front, recovering
+// the transmittance in front of each splat from the final one (T_j = T_{j+1} / (1 - alpha_j)) and
 // the colour blended behind it, and so the exact derivative of its colour with respect to each
-// splat's colour, opacity, 2D mean and conic. Alpha is recomputed with blend_body's formula, so
-// the splats skipped there (alpha < 1/255) are skipped here. Unlike the reference, a splat whose
-// alpha was clamped at 0.99 gets no gradient through opacity or shape: the clamp is flat there.
-// A subgroup sums its pixels' gradients for a splat, and one invocation adds the sums to the
-// splat's totals (shaders/train/parameter_layout.h's SPLAT_GRAD_ slots). Like the blend, a pixel walks only its
-// block's list of the batch's splats (block_hit_lists.glsl), widened to its subgroup's blocks so
-// that a subgroup's invocations walk one list together.
+// splat's colour, opacity, 2D mean and conic (replay_splat). Alpha is recomputed with blend_body's
+// formula, so the splats skipped there (alpha < 1/255) are skipped here. Unlike the reference, a
+// splat whose alpha was clamped at 0.99 gets no gradient through opacity or shape: the clamp is
+// flat there. The gradients go to the splat's totals (shaders/train/parameter_layout.h's
+// SPLAT_GRAD_ slots) by atomic adds. Like the blend, a pixel walks only its block's list of the
+// batch's splats (block_hit_lists.glsl), widened to its subgroup's blocks so that a subgroup's
+// invocations walk one list together.
+//
+// Per pixel (PER_SPLAT 0): each invocation replays its own pixel, the subgroup walking its list
+// one splat at a time; the subgroup sums its pixels' gradients for the splat (9 reductions of
+// log2(subgroup size) shuffles each) and one invocation adds the sums.
+//
+// Per splat (PER_SPLAT 1): the subgroup's invocations hold consecutive splats of its list and its
+// pixels' replay state (transmittance, colour behind) lies in shared memory; at step s the
+// invocation of lane l replays pixel (s - l) mod W (W: the subgroup size) through its splat and
+// passes the state on to lane l + 1, which holds the next splat to the front. So every pixel
+// meets its splats one step after another in back-to-front order, exactly the per-pixel replay
+// (the same floats per pixel: only the order of the sums differs), while each splat's gradient
+// gathers in its invocation's registers over the W pixels and is added once, by all lanes
+// together rather than by one elected lane. A lane that has met all W pixels takes the splat W
+// places further to the front, so the subgroup stays full except for W - 1 steps of filling at
+// the start of each batch. What it trades: the 9 subgroup reductions and the single-lane atomics
+// of every splat against one shared-memory read and write of a pixel's state per step. That pays
+// where splats are large and many (every lane of a subgroup busy on the same list: the per-pixel
+// form's reductions then cost more than the replay itself); where a block's lists are short, the
+// W - 1 filling steps per batch dominate. Which wins depends on the GPU and the scene, so
+// DifferentiableRenderer times both on the first training steps and keeps the faster.
+//
+// Neither form assumes a subgroup size (lavapipe runs 4 or 8, AMD 64): both only need full
+// subgroups of consecutive invocations, as block_hit_lists.glsl does.
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_vote : require
@@ -54,11 +79,138 @@ void add_gradient(uint index, float value) {
 #endif
 }
 
+// A splat's gradient, summed over pixels: d/d 2D mean, conic, opacity and colour.
+struct SplatGradient {
+    vec2 mean;
+    vec3 conic;
+    float opacity;
+    vec3 color;
+};
+const SplatGradient NO_GRADIENT = SplatGradient(vec2(0.0), vec3(0.0), 0.0, vec3(0.0));
+
+void add_splat_gradient(uint gaussian, SplatGradient grad) {
+    const uint base = gaussian * SPLAT_GRAD_STRIDE;
+    add_gradient(base + SPLAT_GRAD_MEAN, grad.mean.x);
+    add_gradient(base + SPLAT_GRAD_MEAN + 1u, grad.mean.y);
+    add_gradient(base + SPLAT_GRAD_CONIC, grad.conic.x);
+    add_gradient(base + SPLAT_GRAD_CONIC + 1u, grad.conic.y);
+    add_gradient(base + SPLAT_GRAD_CONIC + 2u, grad.conic.z);
+    add_gradient(base + SPLAT_GRAD_OPACITY, grad.opacity);
+    add_gradient(base + SPLAT_GRAD_COLOR, grad.color.r);
+    add_gradient(base + SPLAT_GRAD_COLOR + 1u, grad.color.g);
+    add_gradient(base + SPLAT_GRAD_COLOR + 2u, grad.color.b);
+}
+
+// What a pixel's replay reads from the forward pass and the loss.
+struct PixelBackward {
+    vec2 pixel;
+    vec3 dl_dpixel;
+    float final_t;
+    float background_grad;  // what the background adds through the final transmittance
+    uint last;              // one past the list position of the last splat it blended
+};
+
+// Where a pixel's replay stands: the transmittance in front of the splat replayed last (the
+// final one before the first) and the colour blended behind that splat, per unit of it.
+struct Replay {
+    float t;
+    vec3 behind;
+};
+
+// Replays one splat the pixel blended (its list position below pixel.last): steps `replay` to the
+// front of it and adds the pixel's derivatives to `grad`. The one formula of both forms.
+void replay_splat(vec2 mean, vec4 conic_o, vec3 color, PixelBackward pixel, inout Replay replay,
+                  inout SplatGradient grad) {
+    const vec2 d = mean - pixel.pixel;
+    const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
+    if (power > 0.0) return;
+    const float g = exp(power);
+    const float unclamped = conic_o.w * g;
+    const float alpha = min(MAX_ALPHA, unclamped);
+    if (alpha < MIN_ALPHA) return;
+    replay.t /= 1.0 - alpha;
+    grad.color += alpha * replay.t * pixel.dl_dpixel;
+    const float dl_dalpha =
+        dot(color - replay.behind, pixel.dl_dpixel) * replay.t - pixel.final_t / (1.0 - alpha) * pixel.background_grad;
+    replay.behind = alpha * color + (1.0 - alpha) * replay.behind;
+    if (unclamped >= MAX_ALPHA) return;
+    grad.opacity += g * dl_dalpha;
+    const float dl_dpower = conic_o.w * g * dl_dalpha;
+    grad.mean += dl_dpower * vec2(-conic_o.x * d.x - conic_o.y * d.y, -conic_o.y * d.x - conic_o.z * d.y);
+    grad.conic += dl_dpower * vec3(-0.5 * d.x * d.x, -d.x * d.y, -0.5 * d.y * d.y);
+}
+
+#if PER_SPLAT
+shared vec2 batch_mean[BATCH];  // with the pixels' state below, the whole fits lavapipe's 32 KiB
+#else
 shared vec4 batch_mean[BATCH];  // xy: as in blend_body.glsl
+#endif
 shared vec4 batch_conic_opacity[BATCH];
 shared vec4 batch_color[BATCH];
 shared uint batch_gaussian[BATCH];
 shared uint tile_end;
+
+#if PER_SPLAT
+// Per pixel, at its invocation's gl_LocalInvocationIndex: what replay_splat reads, and its Replay.
+shared vec4 pixel_grad[BATCH];    // rgb: dL/d rgb, a: final transmittance
+shared uint pixel_last[BATCH];
+shared vec4 pixel_replay[BATCH];  // x: t, yzw: behind
+
+// The batch's splats of the subgroup's list, per splat (see the top). `walked_end`: the end of the
+// list positions any of the subgroup's pixels blended (subgroup-uniform).
+void replay_batch_per_splat(uint batch_start, uint my_block, uint walked_end, uvec2 tile_origin, vec3 background) {
+    const uint width = gl_SubgroupSize, lane = gl_SubgroupInvocationID;
+    // A subgroup's invocations are consecutive (as block_hit_lists.glsl's subgroup_blocks assumes):
+    // its q-th pixel is that of invocation first + q.
+    const uint first = gl_LocalInvocationIndex - lane;
+    const uint list = my_block * BATCH;
+    // The list is in list order: only its first `count` splats were blended by any pixel here.
+    uint count = 0u;
+    for (uint high = block_hit_count[my_block]; count < high;) {
+        const uint middle = (count + high) / 2u;
+        if (batch_start + block_hits[list + middle] < walked_end) count = middle + 1u;
+        else high = middle;
+    }
+    // The lane's splat: the m-th from the back, m = lane, lane + width, ...
+    uint position = 0u, gaussian = 0u;
+    vec2 mean = vec2(0.0);
+    vec4 conic_o = vec4(0.0);
+    vec3 color = vec3(0.0);
+    SplatGradient grad = NO_GRADIENT;
+    for (uint step = 0u; step + 1u < count + width; ++step) {
+        if (step >= lane) {
+            const uint q = (step - lane) % width;  // the pixel: the q-th of the subgroup
+            const uint m = step - q;               // = (step - lane - q) + lane: a multiple of width, plus lane
+            if (m < count) {
+                if (q == 0u) {
+                    const uint j = block_hits[list + count - 1u - m];
+                    position = batch_start + j;
+                    gaussian = batch_gaussian[j];
+                    mean = batch_mean[j];
+                    conic_o = batch_conic_opacity[j];
+                    color = batch_color[j].rgb;
+                    grad = NO_GRADIENT;
+                }
+                const uint at = first + q;
+                const uint last = pixel_last[at];
+                if (position < last) {
+                    const vec4 dl_final = pixel_grad[at];
+                    const PixelBackward pixel = PixelBackward(vec2(tile_origin + pixel_in_tile(at)), dl_final.rgb,
+                                                              dl_final.a, dot(background, dl_final.rgb), last);
+                    const vec4 state = pixel_replay[at];
+                    Replay replay = Replay(state.x, state.yzw);
+                    replay_splat(mean, conic_o, color, pixel, replay, grad);
+                    pixel_replay[at] = vec4(replay.t, replay.behind);
+                }
+                if (q == width - 1u) add_splat_gradient(gaussian, grad);
+            }
+        }
+        // The next lane reads what this step wrote.
+        subgroupMemoryBarrierShared();
+        subgroupBarrier();
+    }
+}
+#endif
 
 void main() {
     const CameraParams cam = pc.camera.c;
@@ -67,26 +219,26 @@ void main() {
     const uint my_block = block_of(gl_LocalInvocationIndex);
     const uint slot = batch_slot();
     const bool inside = pixel.x < cam.size.x && pixel.y < cam.size.y;
-    const vec2 pixel_f = vec2(pixel);
     const uvec2 range = pc.ranges.v[gl_WorkGroupID.y * cam.size.z + gl_WorkGroupID.x];
 
     const uint index = pixel.y * cam.size.x + pixel.x;
-    const float final_t = inside ? pc.transmittance.v[index] : 0.0;
-    const uint last = inside ? pc.last.v[index] : 0u;
     const vec3 dl_dpixel = inside ? pc.pixel_grad.v[index].rgb : vec3(0.0);
-    // What the background adds through the final transmittance.
-    const float background_grad = dot(cam.background.rgb, dl_dpixel);
+    const PixelBackward me = PixelBackward(vec2(pixel), dl_dpixel, inside ? pc.transmittance.v[index] : 0.0,
+                                           dot(cam.background.rgb, dl_dpixel), inside ? pc.last.v[index] : 0u);
+#if PER_SPLAT
+    pixel_grad[gl_LocalInvocationIndex] = vec4(me.dl_dpixel, me.final_t);
+    pixel_last[gl_LocalInvocationIndex] = me.last;
+    pixel_replay[gl_LocalInvocationIndex] = vec4(me.final_t, vec3(0.0));
+    const uint walked_end = subgroupMax(me.last);
+#else
+    Replay replay = Replay(me.final_t, vec3(0.0));
+#endif
 
     if (gl_LocalInvocationIndex == 0u) tile_end = range.x;
     barrier();
-    if (last > range.x) atomicMax(tile_end, last);
+    if (me.last > range.x) atomicMax(tile_end, me.last);
     barrier();
     const uint end = min(tile_end, range.y);
-
-    float t = final_t;
-    vec3 behind = vec3(0.0);  // colour blended behind the current splat, per unit of its transmittance
-    vec3 last_color = vec3(0.0);
-    float last_alpha = 0.0;
 
     for (uint batch_end = end; batch_end > range.x;) {
         const uint batch_size = min(BATCH, batch_end - range.x);
@@ -99,66 +251,35 @@ void main() {
             const vec2 mean = footprint_mean(footprint);
             const vec4 conic_o = footprint_conic_opacity(footprint);
             batch_gaussian[slot] = g;
+#if PER_SPLAT
+            batch_mean[slot] = mean;
+#else
             batch_mean[slot] = vec4(mean, 0.0, 0.0);
+#endif
             batch_conic_opacity[slot] = conic_o;
             batch_color[slot] = pc.colors.v[g];
             touched = subgroup_blocks(touched_blocks(mean, conic_o, tile_origin));
         }
         list_block_hits(slot, touched);  // its barriers also order the stores above before the walk
 
+#if PER_SPLAT
+        replay_batch_per_splat(batch_start, my_block, walked_end, tile_origin, cam.background.rgb);
+#else
         const uint hits = block_hit_count[my_block];
         for (uint k = hits; k-- > 0u;) {
             const uint j = block_hits[my_block * BATCH + k];
-            const bool walked = batch_start + j < last;
+            const bool walked = batch_start + j < me.last;
             // Whole subgroups skip splats none of their pixels blended (most, for small splats).
             if (!subgroupAny(walked)) continue;
-            vec2 grad_mean = vec2(0.0);
-            vec3 grad_conic = vec3(0.0), grad_color = vec3(0.0);
-            float grad_opacity = 0.0;
-            if (walked) {
-                const vec4 conic_o = batch_conic_opacity[j];
-                const vec2 d = batch_mean[j].xy - pixel_f;
-                const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
-                if (power <= 0.0) {
-                    const float g = exp(power);
-                    const float unclamped = conic_o.w * g;
-                    const float alpha = min(MAX_ALPHA, unclamped);
-                    if (alpha >= MIN_ALPHA) {
-                        t /= 1.0 - alpha;
-                        const vec3 color = batch_color[j].rgb;
-                        grad_color = alpha * t * dl_dpixel;
-                        behind = last_alpha * last_color + (1.0 - last_alpha) * behind;
-                        last_color = color;
-                        last_alpha = alpha;
-                        const float dl_dalpha =
-                            dot(color - behind, dl_dpixel) * t - final_t / (1.0 - alpha) * background_grad;
-                        if (unclamped < MAX_ALPHA) {
-                            grad_opacity = g * dl_dalpha;
-                            const float dl_dpower = conic_o.w * g * dl_dalpha;
-                            grad_mean = dl_dpower * vec2(-conic_o.x * d.x - conic_o.y * d.y,
-                                                         -conic_o.y * d.x - conic_o.z * d.y);
-                            grad_conic = dl_dpower * vec3(-0.5 * d.x * d.x, -d.x * d.y, -0.5 * d.y * d.y);
-                        }
-                    }
-                }
-            }
-            grad_mean = subgroupAdd(grad_mean);
-            grad_conic = subgroupAdd(grad_conic);
-            grad_color = subgroupAdd(grad_color);
-            grad_opacity = subgroupAdd(grad_opacity);
-            if (subgroupElect()) {
-                const uint base = batch_gaussian[j] * SPLAT_GRAD_STRIDE;
-                add_gradient(base + SPLAT_GRAD_MEAN, grad_mean.x);
-                add_gradient(base + SPLAT_GRAD_MEAN + 1u, grad_mean.y);
-                add_gradient(base + SPLAT_GRAD_CONIC, grad_conic.x);
-                add_gradient(base + SPLAT_GRAD_CONIC + 1u, grad_conic.y);
-                add_gradient(base + SPLAT_GRAD_CONIC + 2u, grad_conic.z);
-                add_gradient(base + SPLAT_GRAD_OPACITY, grad_opacity);
-                add_gradient(base + SPLAT_GRAD_COLOR, grad_color.r);
-                add_gradient(base + SPLAT_GRAD_COLOR + 1u, grad_color.g);
-                add_gradient(base + SPLAT_GRAD_COLOR + 2u, grad_color.b);
-            }
+            SplatGradient grad = NO_GRADIENT;
+            if (walked) replay_splat(batch_mean[j].xy, batch_conic_opacity[j], batch_color[j].rgb, me, replay, grad);
+            grad.mean = subgroupAdd(grad.mean);
+            grad.conic = subgroupAdd(grad.conic);
+            grad.color = subgroupAdd(grad.color);
+            grad.opacity = subgroupAdd(grad.opacity);
+            if (subgroupElect()) add_splat_gradient(batch_gaussian[j], grad);
         }
+#endif
         batch_end = batch_start;
     }
 }

@@ -3,25 +3,64 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <stdexcept>
 
 #include "render/entry_growth.hpp"
 #include "shaders/train/blend_backward.kernel.hpp"
 #include "shaders/train/blend_backward_cas.kernel.hpp"
 #include "shaders/train/blend_backward_fixed.kernel.hpp"
+#include "shaders/train/blend_backward_per_splat.kernel.hpp"
+#include "shaders/train/blend_backward_per_splat_cas.kernel.hpp"
 #include "shaders/train/splat_grads_from_fixed.kernel.hpp"
 #include "shaders/train/blend_train.kernel.hpp"
 #include "shaders/train/preprocess_backward.kernel.hpp"
 #include "shaders/train/train_activate.kernel.hpp"
+#include "stats/median.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::train {
 
 using namespace shader::train;
-DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSums sums)
+
+BlendBackward BlendBackwardChoice::next() const {
+    if (chosen_ != BlendBackward::fastest) return chosen_;
+    return per_pixel_ms_.size() <= per_splat_ms_.size() ? BlendBackward::per_pixel : BlendBackward::per_splat;
+}
+
+void BlendBackwardChoice::timed(BlendBackward form, double milliseconds) {
+    if (chosen_ != BlendBackward::fastest) return;
+    (form == BlendBackward::per_splat ? per_splat_ms_ : per_pixel_ms_).push_back(milliseconds);
+    if (per_pixel_ms_.size() < kTrials || per_splat_ms_.size() < kTrials) return;
+    chosen_ = stats::median(per_splat_ms_) < stats::median(per_pixel_ms_) ? BlendBackward::per_splat
+                                                                          : BlendBackward::per_pixel;
+}
+
+void BlendBackwardChoice::untimed() {
+    if (chosen_ == BlendBackward::fastest) chosen_ = BlendBackward::per_pixel;
+}
+
+std::string blend_backward_stage(BlendBackward form) {
+    return form == BlendBackward::per_splat ? "blend backward (per splat)" : "blend backward (per pixel)";
+}
+
+namespace {
+
+// Fixed-point sums have no per-splat kernel: their runs keep one form.
+BlendBackward form_for(GradientSums sums, BlendBackward form) {
+    if (sums != GradientSums::fixed_point) return form;
+    if (form == BlendBackward::per_splat)
+        throw std::invalid_argument("the per-splat blend backward has no fixed-point sums");
+    return BlendBackward::per_pixel;
+}
+
+}  // namespace
+
+DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSums sums, BlendBackward form)
     : context_(c),
       binning_(c),
       activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
       blend_(std::make_unique<gpu::Kernel<BlendTrainKernel>>(c)),
+      choice_(form_for(sums, form)),
       preprocess_backward_(std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c)),
       frame_(c),
       status_(c, sizeof(uint32_t), gpu::MemoryKind::device, "training step status"),
@@ -34,10 +73,26 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
                                                 "order-independent gradient sums need");
         blend_backward_fixed_ = std::make_unique<gpu::Kernel<BlendBackwardFixedKernel>>(c);
         from_fixed_ = std::make_unique<gpu::Kernel<SplatGradsFromFixedKernel>>(c);
-    } else if (c.info().float_atomics && sums == GradientSums::device_default) {
-        blend_backward_ = std::make_unique<gpu::Kernel<BlendBackwardKernel>>(c);
+    }
+    float_atomics_ = c.info().float_atomics && sums == GradientSums::device_default;
+}
+
+void DifferentiableRenderer::record_blend_backward(gpu::CommandStream& stream, const BlendBackwardPush& push) {
+    // The kernels of a form are built when it first runs: a frame that is never timed (render_gradients)
+    // builds one.
+    const auto& c = context_;
+    if (recorded_ == BlendBackward::per_splat && float_atomics_) {
+        if (!per_splat_) per_splat_ = std::make_unique<gpu::Kernel<BlendBackwardPerSplatKernel>>(c);
+        stream.dispatch(*per_splat_, push, tiles_x_, tiles_y_);
+    } else if (recorded_ == BlendBackward::per_splat) {
+        if (!per_splat_cas_) per_splat_cas_ = std::make_unique<gpu::Kernel<BlendBackwardPerSplatCasKernel>>(c);
+        stream.dispatch(*per_splat_cas_, push, tiles_x_, tiles_y_);
+    } else if (float_atomics_) {
+        if (!blend_backward_) blend_backward_ = std::make_unique<gpu::Kernel<BlendBackwardKernel>>(c);
+        stream.dispatch(*blend_backward_, push, tiles_x_, tiles_y_);
     } else {
-        blend_backward_cas_ = std::make_unique<gpu::Kernel<BlendBackwardCasKernel>>(c);
+        if (!blend_backward_cas_) blend_backward_cas_ = std::make_unique<gpu::Kernel<BlendBackwardCasKernel>>(c);
+        stream.dispatch(*blend_backward_cas_, push, tiles_x_, tiles_y_);
     }
 }
 
@@ -98,6 +153,7 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
                                              VkDeviceAddress pixel_grad) {
     auto& f = frame_;
+    recorded_ = choice_.next();
     const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
     stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * 4);
     if (blend_backward_fixed_) stream.fill(splat_grads_fixed_, 0, 0, uint64_t(grad_floats) * 8);
@@ -120,13 +176,11 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
         stream.dispatch(*from_fixed_,
                         {.totals = splat_grads_fixed_.address(), .splat_grads = splat_grads_.address(), .count = grad_floats},
                         gpu::groups_for(grad_floats));
-    } else if (blend_backward_) {
-        stream.dispatch(*blend_backward_, backward, tiles_x_, tiles_y_);
     } else {
-        stream.dispatch(*blend_backward_cas_, backward, tiles_x_, tiles_y_);
+        record_blend_backward(stream, backward);
     }
     stream.barrier();
-    stream.mark("blend backward");
+    stream.mark(blend_backward_stage(recorded_));
     stream.dispatch(*preprocess_backward_,
                     {.camera = f.camera.address(),
                      .raw = scene.params.address(),
@@ -140,6 +194,16 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                     gpu::groups_for(scene.layout.count));
     stream.barrier();
     stream.mark("preprocess backward");
+}
+
+void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream) {
+    const std::string label = blend_backward_stage(recorded_);
+    for (const auto& stage : stream.stage_times())
+        if (stage.label == label) {
+            choice_.timed(recorded_, stage.milliseconds);
+            return;
+        }
+    choice_.untimed();
 }
 
 void DifferentiableRenderer::record_readback(gpu::CommandStream& stream) {
@@ -179,6 +243,7 @@ void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Ca
         record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();
+        learn_timings(stream);
         const uint32_t needed = entries_needed();  // checked even when the frame fits
         if ((status() & kStepOverflowed) == 0) return;
         render::check_frame_attempts(attempts, "view '" + camera.name + "'");

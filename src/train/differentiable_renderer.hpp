@@ -2,14 +2,16 @@
 // DifferentiableRenderer: the renderer's frame on a TrainableScene, keeping what the backward pass
 // needs, and that backward pass. Forward: activation -> TileBinning -> blend_train (the picture,
 // and per pixel the final transmittance and where its list walk ended). Backward, from dL/d rgb
-// per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour) ->
-// preprocess_backward (gradients of every raw parameter). Both are recorded into the caller's
-// command stream, so a training step is one submission. Kernels: shaders/train/{train_activate,
-// blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,splat_grads_from_fixed,
-// preprocess_backward}.comp, layouts in
-// shaders/train/differentiable_renderer.h.
+// per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour; per pixel or per
+// splat, BlendBackward) -> preprocess_backward (gradients of every raw parameter). Both are
+// recorded into the caller's command stream, so a training step is one submission. Kernels:
+// shaders/train/{train_activate,blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,
+// blend_backward_per_splat,blend_backward_per_splat_cas,splat_grads_from_fixed,
+// preprocess_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "gpu/buffer.hpp"
 #include "gpu/command_stream.hpp"
@@ -21,22 +23,54 @@
 #include "vksplat/train/gradients.hpp"
 
 namespace vksplat::shader::train {
+struct BlendBackwardPush;
 struct TrainActivateKernel;
 struct BlendTrainKernel;
 struct BlendBackwardKernel;
 struct BlendBackwardCasKernel;
 struct BlendBackwardFixedKernel;
+struct BlendBackwardPerSplatKernel;
+struct BlendBackwardPerSplatCasKernel;
 struct SplatGradsFromFixedKernel;
 struct PreprocessBackwardKernel;
 }  // namespace vksplat::shader::train
 
 namespace vksplat::train {
 
+// Which form of the blend backward runs next (BlendBackward): the one asked for, or, asked for
+// `fastest`, the two in turn until each has kTrials timings, then for good the one whose median is
+// lower (ties: per pixel). Medians, because a step's time also moves with its view and with what
+// else the GPU is doing.
+class BlendBackwardChoice {
+public:
+    static constexpr size_t kTrials = 10;
+
+    explicit BlendBackwardChoice(BlendBackward wanted) : chosen_(wanted) {}
+    // per_pixel or per_splat.
+    BlendBackward next() const;
+    // The GPU time of a blend backward that ran in `form`; ignored once chosen.
+    void timed(BlendBackward form, double milliseconds);
+    // The queue gave no timings: settles on per pixel, the form that ran before there was a choice.
+    void untimed();
+    // per_pixel or per_splat once asked for or measured; `fastest` while still measuring.
+    BlendBackward chosen() const { return chosen_; }
+
+private:
+    BlendBackward chosen_;
+    std::vector<double> per_pixel_ms_, per_splat_ms_;
+};
+
+// The stage label of a blend backward in `form` ("blend backward (per pixel)", "... (per splat)"),
+// so that the per-pass times of a run (train --profile, train_bench) say which form ran.
+std::string blend_backward_stage(BlendBackward form);
+
 class DifferentiableRenderer {
 public:
-    // How the blend backward sums gradients (GradientSums). Throws InputError for fixed_point on a
-    // device without 64-bit buffer atomics.
-    explicit DifferentiableRenderer(const gpu::Context& context, GradientSums sums = GradientSums::device_default);
+    // How the blend backward sums gradients (GradientSums) and divides its work (BlendBackward).
+    // Throws InputError for fixed_point on a device without 64-bit buffer atomics,
+    // std::invalid_argument for fixed_point with per_splat.
+    explicit DifferentiableRenderer(const gpu::Context& context, GradientSums sums = GradientSums::device_default,
+                                    BlendBackward form = BlendBackward::fastest);
     ~DifferentiableRenderer();
 
     // Sizes the buffers for the scene and the image (keeps them where they suffice). Tile entries
@@ -49,8 +83,12 @@ public:
     // capacity filled in by the caller): leaves colour and alpha in color_alpha().
     void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params);
     // The gradients of every raw parameter into scene.grads, from dL/d rgb per pixel (vec4, at
-    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits.
+    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits. The blend
+    // backward runs in blend_backward_choice().next()'s form.
     void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad);
+    // After the submission of a record_backward: its blend backward's time, for the choice of form.
+    void learn_timings(const gpu::CommandStream& stream);
+    const BlendBackwardChoice& blend_backward_choice() const { return choice_; }
     // Copies the frame counters and the step status to the host-visible readback (after the
     // submission: counters(), status()).
     void record_readback(gpu::CommandStream& stream);
@@ -72,15 +110,23 @@ public:
     uint64_t device_bytes() const;
 
 private:
+    // The float-sum blend backward in recorded_'s form.
+    void record_blend_backward(gpu::CommandStream& stream, const shader::train::BlendBackwardPush& push);
+
     const gpu::Context& context_;
     render::TileBinning binning_;
     std::unique_ptr<gpu::Kernel<shader::train::TrainActivateKernel>> activate_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendTrainKernel>> blend_;
-    // One of the three: with float atomics, with compare-and-swap loops, or in fixed point (with
-    // the pass that turns its totals into floats).
+    // With float atomics (per pixel and per splat), with compare-and-swap loops (both), or in
+    // fixed point (per pixel, with the pass that turns its totals into floats).
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardKernel>> blend_backward_;
+    std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardPerSplatKernel>> per_splat_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardCasKernel>> blend_backward_cas_;
+    std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardPerSplatCasKernel>> per_splat_cas_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardFixedKernel>> blend_backward_fixed_;
+    bool float_atomics_ = false;  // else compare-and-swap loops (or fixed point)
+    BlendBackwardChoice choice_;
+    BlendBackward recorded_ = BlendBackward::per_pixel;  // the form the last record_backward ran
     std::unique_ptr<gpu::Kernel<shader::train::SplatGradsFromFixedKernel>> from_fixed_;
     std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
     render::FrameResources frame_;

@@ -13,7 +13,7 @@ namespace vksplat::train {
 
 RenderGradients render_gradients(const gpu::Context& context, const GaussianCloud& cloud, const Camera& camera,
                                  const RenderSettings& settings, const std::vector<float>& weights,
-                                 GradientSums sums) {
+                                 GradientSums sums, BlendBackward form) {
     camera.validate();
     const auto [pixels, tiles] = render::image_extent(camera);
     if (weights.size() != size_t(pixels) * 3)
@@ -24,7 +24,7 @@ RenderGradients render_gradients(const gpu::Context& context, const GaussianClou
         throw std::invalid_argument("render_gradients: the cloud needs sanitising first (see sanitize())");
 
     const TrainableScene scene = TrainableScene::upload(context, cloud);
-    DifferentiableRenderer renderer(context, sums);
+    DifferentiableRenderer renderer(context, sums, form);
     renderer.ensure(scene.layout.count, pixels, tiles);
     std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
     for (size_t p = 0; p < pixels; ++p) std::memcpy(&pixel_weights[4 * p], &weights[3 * p], 3 * sizeof(float));

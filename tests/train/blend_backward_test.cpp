@@ -2,7 +2,7 @@
 // side stays quick), per-splat gradients of colour, opacity, 2D mean and conic against the
 // analytic formula of the reference's backward pass (renderCUDA's backward: replay each pixel's
 // splats back to front from its final transmittance), evaluated here in double on the reference
-// rasterizer's own projection.
+// rasterizer's own projection; in both forms of the pass (per pixel, per splat).
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -101,9 +101,12 @@ SplatGrads analytic_blend_backward(const std::vector<reference::ProjectedGaussia
     return grads;
 }
 
-class BlendBackward : public GpuTest {};
+class BlendBackward : public GpuTest {
+protected:
+    void check_lego_view_zero(train::BlendBackward form);
+};
 
-TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormula) {
+void BlendBackward::check_lego_view_zero(train::BlendBackward form) {
     VKSPLAT_REQUIRE_SHARED_DATA();
     const auto dir = shared_data_dir() / "lego";
     const GaussianCloud cloud = io::read_ply(dir / "point_cloud.ply");
@@ -121,7 +124,7 @@ TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormula) {
 
     // The GPU's per-splat gradients.
     const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud);
-    train::DifferentiableRenderer renderer(context());
+    train::DifferentiableRenderer renderer(context(), train::GradientSums::device_default, form);
     const auto [pixels, tiles] = render::image_extent(camera);
     renderer.ensure(scene.layout.count, pixels, tiles);
     std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
@@ -158,6 +161,12 @@ TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormula) {
         EXPECT_GT(norm2, 0.0) << names[type];
         EXPECT_LE(relative, tolerance[type]) << names[type];
     }
+}
+
+TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormula) { check_lego_view_zero(train::BlendBackward::per_pixel); }
+
+TEST_F(BlendBackward, LegoViewZeroMatchesTheAnalyticFormulaPerSplat) {
+    check_lego_view_zero(train::BlendBackward::per_splat);
 }
 
 }  // namespace

@@ -1,15 +1,19 @@
 // The backward passes against central finite differences of the double-precision reference
 // rasterizer: for L = sum of w . rgb over the picture (random weights w), the GPU's gradient of
 // every raw parameter type (position, log-scale, quaternion, opacity logit, SH of each degree)
-// must agree with (L(p + h) - L(p - h)) / 2h to a relative error of 1e-3 per type.
+// must agree with (L(p + h) - L(p - h)) / 2h to a relative error of 1e-3 per type; the blend
+// backward's per-splat form as its per-pixel one. The other sums and forms agree with the default.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "train/differentiable_renderer.hpp"  // first: its volk must come before the public headers' Vulkan
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/reference/rasterizer.hpp"
@@ -123,7 +127,7 @@ GaussianCloud edge_scene(uint32_t seed, int sh_degree) {
 class Gradients : public GpuTest {
 protected:
     void check_every_type(uint32_t seed, int sh_degree, const std::array<float, 3>& background,
-                          bool edges = false) {
+                          bool edges = false, train::BlendBackward form = train::BlendBackward::per_pixel) {
         GaussianCloud cloud = edges ? edge_scene(seed, sh_degree) : smooth_scene(seed, 10, sh_degree);
         const Camera camera = forward_camera(64, 48, 60.0);
         RenderSettings settings;
@@ -132,7 +136,8 @@ protected:
         std::vector<float> weights(size_t(camera.width) * camera.height * 3);
         for (auto& w : weights) w = std::uniform_real_distribution<float>(-1.0f, 1.0f)(rng);
 
-        const train::RenderGradients gpu = train::render_gradients(context(), cloud, camera, settings, weights);
+        const train::RenderGradients gpu =
+            train::render_gradients(context(), cloud, camera, settings, weights, train::GradientSums::device_default, form);
         // The picture differentiated is the renderer's picture.
         const auto expected = reference::render_rgb(cloud, camera, settings);
         for (size_t i = 0; i < expected.size(); ++i) ASSERT_NEAR(gpu.image.rgb[i], expected[i], 2e-5) << i;
@@ -175,34 +180,51 @@ TEST_F(Gradients, WithABackgroundAndLowerShDegree) { check_every_type(21, 1, {0.
 
 TEST_F(Gradients, ThroughTheJacobianClampAndTheColourClamp) { check_every_type(33, 2, {0.0f, 0.0f, 0.0f}, true); }
 
-// The compare-and-swap loop (devices without float atomics) and the fixed-point sums (--deterministic)
-// give the same gradients as float atomics: equal up to the order of float additions and, for fixed
-// point, its 2^-40 steps.
-void expect_same_gradients(const gpu::Context& context, train::GradientSums sums) {
-    const GaussianCloud cloud = random_scene(17, 300, 3);
-    const Camera camera = forward_camera(96, 64, 80.0);
-    std::mt19937 rng(2);
+TEST_F(Gradients, PerSplatMatchesFiniteDifferences) {
+    check_every_type(7, 3, {0.0f, 0.0f, 0.0f}, false, train::BlendBackward::per_splat);
+}
+
+TEST_F(Gradients, PerSplatWithABackgroundThroughTheClamps) {
+    check_every_type(21, 1, {0.3f, 0.6f, 1.0f}, true, train::BlendBackward::per_splat);
+}
+
+std::vector<float> random_weights(const Camera& camera, uint32_t seed) {
+    std::mt19937 rng(seed);
     std::vector<float> weights(size_t(camera.width) * camera.height * 3);
     for (auto& w : weights) w = std::uniform_real_distribution<float>(-1.0f, 1.0f)(rng);
-    const auto atomics = train::render_gradients(context, cloud, camera, {}, weights);
-    const auto cas = train::render_gradients(context, cloud, camera, {}, weights, sums);
-    std::printf("  float atomics on this device: %s\n", context.info().float_atomics ? "yes" : "no");
-    const auto relative = [](const std::vector<float>& a, const std::vector<float>& b) {
+    return weights;
+}
+
+// Two backward passes give the same gradients: equal up to the order of float additions (and, for
+// fixed point, its 2^-40 steps), 1e-5 relative per parameter type.
+void expect_same_gradients(const train::RenderGradients& a, const train::RenderGradients& b) {
+    const auto relative = [](const std::vector<float>& x, const std::vector<float>& y) {
         double diff = 0, norm = 0;
-        for (size_t i = 0; i < a.size(); ++i) {
-            diff += double(a[i] - b[i]) * (a[i] - b[i]);
-            norm += double(b[i]) * b[i];
+        for (size_t i = 0; i < x.size(); ++i) {
+            diff += double(x[i] - y[i]) * (x[i] - y[i]);
+            norm += double(y[i]) * y[i];
         }
         return std::sqrt(diff / std::max(norm, 1e-30));
     };
-    EXPECT_LE(relative(cas.gradient.positions, atomics.gradient.positions), 1e-5);
-    EXPECT_LE(relative(cas.gradient.log_scales, atomics.gradient.log_scales), 1e-5);
-    EXPECT_LE(relative(cas.gradient.rotations, atomics.gradient.rotations), 1e-5);
-    EXPECT_LE(relative(cas.gradient.opacity_logits, atomics.gradient.opacity_logits), 1e-5);
-    EXPECT_LE(relative(cas.gradient.sh, atomics.gradient.sh), 1e-5);
+    EXPECT_LE(relative(a.gradient.positions, b.gradient.positions), 1e-5);
+    EXPECT_LE(relative(a.gradient.log_scales, b.gradient.log_scales), 1e-5);
+    EXPECT_LE(relative(a.gradient.rotations, b.gradient.rotations), 1e-5);
+    EXPECT_LE(relative(a.gradient.opacity_logits, b.gradient.opacity_logits), 1e-5);
+    EXPECT_LE(relative(a.gradient.sh, b.gradient.sh), 1e-5);
     double norm = 0;
-    for (float g : atomics.gradient.positions) norm += double(g) * g;
+    for (float g : b.gradient.positions) norm += double(g) * g;
     EXPECT_GT(norm, 0.0);  // not two empty gradients agreeing
+}
+
+// The compare-and-swap loop (devices without float atomics) and the fixed-point sums (--deterministic)
+// give the same gradients as float atomics.
+void expect_same_gradients(const gpu::Context& context, train::GradientSums sums) {
+    const GaussianCloud cloud = random_scene(17, 300, 3);
+    const Camera camera = forward_camera(96, 64, 80.0);
+    const std::vector<float> weights = random_weights(camera, 2);
+    std::printf("  float atomics on this device: %s\n", context.info().float_atomics ? "yes" : "no");
+    expect_same_gradients(train::render_gradients(context, cloud, camera, {}, weights, sums),
+                          train::render_gradients(context, cloud, camera, {}, weights));
 }
 
 TEST_F(Gradients, CompareAndSwapSumsAgreeWithFloatAtomics) {
@@ -222,6 +244,84 @@ TEST_F(Gradients, FixedPointSumsAgreeWithFloatAtomicsAndRepeatExactly) {
         EXPECT_EQ(again.gradient.sh, first.gradient.sh);
         EXPECT_EQ(again.gradient.opacity_logits, first.gradient.opacity_logits);
     }
+}
+
+// The per-splat blend backward gives the per-pixel one's gradients where its bookkeeping could
+// slip: splats covering many tiles, tiles of more splats than a batch (256) holds, pixels whose
+// loss is masked out (no gradient; their replay still runs), and tiles cut by the picture's edge
+// (100x70: neither is a multiple of 16). With float atomics and with compare-and-swap sums.
+TEST_F(Gradients, PerSplatAgreesWithPerPixel) {
+    struct Case {
+        const char* name;
+        GaussianCloud cloud;
+    };
+    const Case cases[] = {
+        {"large splats", random_scene(41, 40, 1, 2.0f, 6.0f, 0.4f, 1.5f)},
+        {"many overlapping splats", random_scene(42, 3000, 1, 3.0f, 8.0f, 0.05f, 0.4f, 0.8f)},
+        {"mixed sizes", random_scene(43, 600, 2, 2.0f, 8.0f, 0.01f, 0.8f)},
+    };
+    const Camera camera = forward_camera(100, 70, 80.0);
+    std::vector<float> weights = random_weights(camera, 5);
+    for (int y = 0; y < camera.height; ++y)
+        for (int x = 0; x < camera.width; ++x)
+            if (x < 30 || (x / 3 + y / 3) % 2 == 0)  // a band and a fine checkerboard masked out
+                for (int c = 0; c < 3; ++c) weights[(size_t(y) * camera.width + x) * 3 + c] = 0.0f;
+    for (const auto& c : cases) {
+        SCOPED_TRACE(c.name);
+        const auto per_pixel = train::render_gradients(context(), c.cloud, camera, {}, weights,
+                                                       train::GradientSums::device_default,
+                                                       train::BlendBackward::per_pixel);
+        expect_same_gradients(train::render_gradients(context(), c.cloud, camera, {}, weights,
+                                                      train::GradientSums::device_default,
+                                                      train::BlendBackward::per_splat),
+                              per_pixel);
+        expect_same_gradients(train::render_gradients(context(), c.cloud, camera, {}, weights,
+                                                      train::GradientSums::compare_and_swap,
+                                                      train::BlendBackward::per_splat),
+                              per_pixel);
+    }
+}
+
+TEST_F(Gradients, PerSplatRefusesFixedPointSums) {
+    const GaussianCloud cloud = random_scene(3, 10, 0);
+    const Camera camera = forward_camera(32, 32, 40.0);
+    EXPECT_THROW(train::render_gradients(context(), cloud, camera, {}, random_weights(camera, 1),
+                                         train::GradientSums::fixed_point, train::BlendBackward::per_splat),
+                 std::invalid_argument);
+}
+
+// The choice of form, given timings: both in turn until each has kTrials, then the lower median
+// for good; a form asked for is kept; no timings settle on per pixel.
+TEST(BlendBackwardChoice, TimesBothInTurnThenKeepsTheLowerMedian) {
+    using train::BlendBackward;
+    const auto measure = [](double per_pixel_ms, double per_pixel_outlier_ms, double per_splat_ms) {
+        train::BlendBackwardChoice choice(BlendBackward::fastest);
+        for (size_t i = 0; i < 2 * train::BlendBackwardChoice::kTrials; ++i) {
+            EXPECT_EQ(choice.chosen(), BlendBackward::fastest);
+            const BlendBackward form = choice.next();
+            EXPECT_EQ(form, i % 2 == 0 ? BlendBackward::per_pixel : BlendBackward::per_splat);
+            choice.timed(form, form == BlendBackward::per_splat ? per_splat_ms
+                               : i == 0                         ? per_pixel_outlier_ms
+                                                                : per_pixel_ms);
+        }
+        return choice;
+    };
+    train::BlendBackwardChoice faster_per_splat = measure(2.0, 2.0, 1.5);
+    EXPECT_EQ(faster_per_splat.chosen(), BlendBackward::per_splat);
+    for (int i = 0; i < 30; ++i) faster_per_splat.timed(BlendBackward::per_pixel, 0.1);  // decided: no more votes
+    EXPECT_EQ(faster_per_splat.chosen(), BlendBackward::per_splat);
+    EXPECT_EQ(faster_per_splat.next(), BlendBackward::per_splat);
+    // One slow step (the first, say, with its pipelines cold) does not outvote nine.
+    EXPECT_EQ(measure(1.0, 100.0, 1.5).chosen(), BlendBackward::per_pixel);
+
+    train::BlendBackwardChoice asked(BlendBackward::per_splat);
+    asked.timed(BlendBackward::per_splat, 50.0);
+    asked.untimed();
+    EXPECT_EQ(asked.next(), BlendBackward::per_splat);
+    train::BlendBackwardChoice untimed(BlendBackward::fastest);
+    untimed.untimed();
+    EXPECT_EQ(untimed.chosen(), BlendBackward::per_pixel);
+    EXPECT_EQ(untimed.next(), BlendBackward::per_pixel);
 }
 
 }  // namespace

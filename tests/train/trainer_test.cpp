@@ -120,6 +120,28 @@ TEST_F(Trainer, RefusesAPhotoOfTheWrongSize) {
     }
 }
 
+// The blend backward's form names its stage; `fastest` tries both in turn on the first steps (the
+// choice by their timings is BlendBackwardChoice's test), a form asked for is kept.
+TEST_F(Trainer, StagesSayWhichBlendBackwardRan) {
+    const auto cameras = arc_of_views(32, 24);
+    const train::Photo photo{32, 24, std::vector<uint32_t>(32 * 24, 0xff808080u)};
+    const auto blend_backward_stages = [&](train::BlendBackward form) {
+        train::TrainOptions options;
+        options.blend_backward = form;
+        train::Trainer trainer(context(), cluster(2, 10), options);
+        std::vector<std::string> ran;
+        for (int step = 0; step < 3; ++step)
+            for (const auto& stage : trainer.step(cameras[step], photo).stages)
+                if (stage.stage.starts_with("blend backward")) ran.push_back(stage.stage);
+        return ran;
+    };
+    const std::string per_pixel = "blend backward (per pixel)", per_splat = "blend backward (per splat)";
+    EXPECT_EQ(blend_backward_stages(train::BlendBackward::fastest),
+              (std::vector<std::string>{per_pixel, per_splat, per_pixel}));
+    EXPECT_EQ(blend_backward_stages(train::BlendBackward::per_splat),
+              (std::vector<std::string>{per_splat, per_splat, per_splat}));
+}
+
 TEST_F(Trainer, RefusesABackgroundThatIsNotAColour) {
     const auto cameras = arc_of_views(32, 24);
     train::TrainOptions options;

@@ -28,10 +28,21 @@ struct RenderGradients {
 // gradients, to ~1e-12 absolute, every run (train --deterministic; needs 64-bit buffer atomics).
 enum class GradientSums { device_default, compare_and_swap, fixed_point };
 
+// How the blend backward divides its work (shaders/train/blend_backward.glsl): per_pixel, each
+// invocation replays one pixel and a subgroup sums a splat's gradients over its pixels; per_splat,
+// each invocation holds one splat of its subgroup's list and sums its gradient over the subgroup's
+// pixels in registers. The same gradients up to the order of the float additions; which is faster
+// depends on the GPU and the scene, so `fastest` times both on the first steps (alternating, the
+// median of 10 each) and keeps the faster. fixed_point sums run per pixel only (fastest then means
+// per_pixel; per_splat with them is refused), so that --deterministic runs never switch form.
+enum class BlendBackward { fastest, per_pixel, per_splat };
+
 // Throws std::invalid_argument if weights is not 3 per pixel or the cloud needs sanitising (its
-// gradient would not line up with it); InputError for an invalid camera.
+// gradient would not line up with it), or for per_splat with fixed_point sums; InputError for an
+// invalid camera. One frame times nothing: `fastest` runs per pixel here.
 RenderGradients render_gradients(const gpu::Context& context, const GaussianCloud& cloud, const Camera& camera,
                                  const RenderSettings& settings, const std::vector<float>& weights,
-                                 GradientSums sums = GradientSums::device_default);
+                                 GradientSums sums = GradientSums::device_default,
+                                 BlendBackward form = BlendBackward::fastest);
 
 }  // namespace vksplat::train
