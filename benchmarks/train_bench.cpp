@@ -60,6 +60,10 @@ int main(int argc, char** argv) {
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     bool deterministic = false;
     app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");
+    std::string blend_backward = "fastest";
+    app.add_option("--blend-backward", blend_backward,
+                   "fastest (time both forms on the first steps, keep the faster), per-pixel or per-splat")
+        ->check(CLI::IsMember({"fastest", "per-pixel", "per-splat"}));
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);
     try {
@@ -82,6 +86,9 @@ int main(int argc, char** argv) {
         options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
         options.evaluate_every = evaluate_every;
         options.deterministic = deterministic;
+        options.blend_backward = blend_backward == "per-pixel"   ? train::BlendBackward::per_pixel
+                                 : blend_backward == "per-splat" ? train::BlendBackward::per_splat
+                                                                 : train::BlendBackward::fastest;
         RenderSettings settings;
         settings.background = options.background;
         const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {

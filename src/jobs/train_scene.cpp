@@ -311,6 +311,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.scene_extent = result.scene_extent;
     train_options.background = options.background;
     train_options.deterministic = options.deterministic;
+    train_options.blend_backward = options.blend_backward;
     train_options.position_schedule = train::PositionSchedule::decay;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =

@@ -99,6 +99,7 @@ struct TrainOptions {
     // 0: only at the end. Its time is not in the run's seconds.
     uint64_t evaluate_every = 0;
     bool deterministic = false;         // train::TrainOptions::deterministic
+    train::BlendBackward blend_backward = train::BlendBackward::fastest;  // train::TrainOptions::blend_backward
 };
 
 // The run as it went: after every 500th step (and the last) the Gaussians held; where measured
