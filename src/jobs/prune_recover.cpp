@@ -113,7 +113,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         result.rounds.push_back(std::move(done));
         if (last || result.rounds.back().refit.interrupted) break;
         // The next round ranks the re-fitted model by its own contributions now.
-        const prune::ViewTotals totals = prune::accumulate(renderer, model, cameras, train, settings);
+        const prune::ViewTotals totals =
+            prune::accumulate(renderer, model, cameras, train, settings, {}, prune::needs_fisher(options.method));
         const prune::Ranking next(prune::score(model, totals, options.method), prune::lossless_mask(totals));
         model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, options.rounds)));
     }

@@ -81,7 +81,8 @@ Scored score_from_file(const GaussianCloud& cloud, const PruneOptions& options) 
 Scored score_from_views(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                         const PruneOptions& options, const std::vector<size_t>& train, const prune::Progress& progress) {
     // Rendered even for opacity and random: the lossless pass needs the pixel counts.
-    prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, options.settings, progress);
+    prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, options.settings, progress,
+                                                 prune::needs_fisher(options.method));
     return {prune::score(cloud, totals, options.method, options.seed), prune::lossless_mask(totals), std::move(totals)};
 }
 

@@ -3,9 +3,11 @@
 
 #include <algorithm>
 #include <numbers>
+#include <optional>
 #include <string>
 
 #include "vksplat/error.hpp"
+#include "vksplat/prune/fisher.hpp"
 #include "vksplat/prune/scores.hpp"
 
 namespace vksplat::prune {
@@ -26,7 +28,8 @@ void add_view(ViewTotals& totals, const GaussianStats& stats, const std::vector<
 }  // namespace
 
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
-                      const std::vector<size_t>& views, const RenderSettings& settings, const Progress& progress) {
+                      const std::vector<size_t>& views, const RenderSettings& settings, const Progress& progress,
+                      bool fisher) {
     for (size_t view : views)
         if (view >= cameras.size())
             throw InputError("view " + std::to_string(view),
@@ -37,11 +40,15 @@ ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std:
     const std::vector<float> opacity = opacities(cloud);
 
     ViewTotals totals(cloud.size());
+    std::optional<FisherInformation> information;
+    if (fisher) information.emplace(cloud, settings);
     for (size_t done = 0; done < views.size(); ++done) {
         add_view(totals, renderer.render(cameras[views[done]], with_stats).stats, opacity);
+        if (information) information->add_view(cameras[views[done]]);
         ++totals.views;
         if (progress) progress(done + 1, views.size());
     }
+    if (information) totals.fisher = information->log_dets();
     return totals;
 }
 

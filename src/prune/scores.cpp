@@ -16,13 +16,14 @@ struct MethodName {
     ScoreMethod method;
     std::string_view name;
 };
-constexpr std::array<MethodName, 6> kMethods = {{
+constexpr std::array<MethodName, 7> kMethods = {{
     {ScoreMethod::opacity, "opacity"},
     {ScoreMethod::footprint, "footprint"},
     {ScoreMethod::blend, "blend"},
     {ScoreMethod::blend_max, "blend-max"},
     {ScoreMethod::volume_blend, "volume-blend"},
     {ScoreMethod::random, "random"},
+    {ScoreMethod::fisher, "fisher"},
 }};
 
 // LightGaussian's exponent on the normalised volume: large Gaussians gain a little, so that a big
@@ -81,6 +82,8 @@ ScoreMethod parse_score_method(std::string_view name) {
 
 bool uses_views(ScoreMethod method) { return method != ScoreMethod::opacity && method != ScoreMethod::random; }
 
+bool needs_fisher(ScoreMethod method) { return method == ScoreMethod::fisher; }
+
 std::vector<float> opacities(const GaussianCloud& cloud) {
     std::vector<float> opacity(cloud.size());
     for (size_t i = 0; i < cloud.size(); ++i) opacity[i] = float(1.0 / (1.0 + std::exp(-double(cloud.opacity_logits[i]))));
@@ -98,6 +101,11 @@ std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, S
         case ScoreMethod::blend_max: return totals.blend_max;
         case ScoreMethod::volume_blend: return volume_blend(cloud, totals);
         case ScoreMethod::random: return random_scores(cloud.size(), seed);
+        case ScoreMethod::fisher:
+            if (totals.fisher.empty())
+                throw InputError("--method fisher", "the view totals hold no Fisher scores (they are gathered for this "
+                                                    "method only; a totals file of five columns has none)");
+            return totals.fisher;
     }
     throw std::invalid_argument("prune::score: unknown ScoreMethod");
 }

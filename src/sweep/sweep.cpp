@@ -327,7 +327,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             reporter.clock.advance(double(done - std::min(done, scored)));
             scored = std::max(scored, done);
             reporter.step("scoring the training views", done, total);
-        });
+        },
+        std::ranges::any_of(methods, prune::needs_fisher));
     result.scoring_seconds = seconds_since(scoring_start);
     if (options.compare_scoring_cost)
         result.plain_render_seconds =

@@ -55,6 +55,23 @@ TEST_F(ScoreFiles, TotalsRoundTripAsFiveColumns) {
     EXPECT_EQ(file.totals->views_visible, totals.views_visible);
 }
 
+TEST_F(ScoreFiles, TotalsWithFisherRoundTripAsSixColumns) {
+    prune::ViewTotals totals(2);
+    totals.blend = {1.5, 0.0};
+    totals.pixels = {7, 0};
+    totals.fisher = {12.25f, -165.75f};
+    prune::save_totals(totals, dir / "f.npy");
+    EXPECT_EQ(io::read_npy(dir / "f.npy").shape, (std::vector<size_t>{2, 6}));
+    const prune::ScoreFile file = prune::load_score_file(dir / "f.npy");
+    ASSERT_TRUE(file.totals);
+    EXPECT_EQ(file.totals->fisher, totals.fisher);
+    EXPECT_EQ(file.totals->blend, totals.blend);
+    EXPECT_EQ(file.totals->pixels, totals.pixels);
+    totals.fisher.clear();
+    prune::save_totals(totals, dir / "plain.npy");
+    EXPECT_TRUE(prune::load_score_file(dir / "plain.npy").totals->fisher.empty());
+}
+
 TEST_F(ScoreFiles, OtherShapesAndTypesAreRefusedByName) {
     const float grid[6] = {1, 2, 3, 4, 5, 6};
     io::write_npy(dir / "grid.npy", grid, {2, 3});

@@ -20,7 +20,8 @@ class Scores : public GpuTest {};
 
 TEST(ScoreNames, RoundTripAndRefuseUnknownNames) {
     const std::vector<std::string> names = prune::score_method_names();
-    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "volume-blend", "random"}));
+    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "volume-blend", "random",
+                                               "fisher"}));
     for (const auto& name : names) EXPECT_EQ(prune::to_string(prune::parse_score_method(name)), name);
     try {
         prune::parse_score_method("blend_max");
@@ -32,6 +33,9 @@ TEST(ScoreNames, RoundTripAndRefuseUnknownNames) {
     EXPECT_FALSE(prune::uses_views(ScoreMethod::opacity));
     EXPECT_FALSE(prune::uses_views(ScoreMethod::random));
     EXPECT_TRUE(prune::uses_views(ScoreMethod::blend_max));
+    EXPECT_TRUE(prune::uses_views(ScoreMethod::fisher));
+    EXPECT_TRUE(prune::needs_fisher(ScoreMethod::fisher));
+    EXPECT_FALSE(prune::needs_fisher(ScoreMethod::blend));
 }
 
 TEST(ScoreValues, OpacityIsTheSigmoidOfTheLogit) {
@@ -57,6 +61,9 @@ TEST(ScoreValues, ViewScoresReadTheTotals) {
     EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::footprint), (std::vector<float>{100.0f, 7.0f}));
     EXPECT_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::blend), std::invalid_argument);
     EXPECT_NO_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::opacity)) << "opacity reads no totals";
+    EXPECT_THROW(prune::score(cloud, totals, ScoreMethod::fisher), InputError) << "totals gathered without fisher";
+    totals.fisher = {-3.0f, 12.5f};
+    EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::fisher), (std::vector<float>{-3.0f, 12.5f}));
 }
 
 TEST(ScoreValues, PercentileInterpolatesAsNumPyDoes) {

@@ -22,6 +22,9 @@ struct ViewTotals {
     std::vector<uint64_t> pixels;          // pixels where alpha reached 1/255, summed over views
     std::vector<double> footprint;         // sum over views of opacity * pi * radius^2 (visible views)
     std::vector<uint32_t> views_visible;   // views in which it survived culling
+    // log det of PUP 3D-GS's Fisher information summed over the views (fisher.hpp); empty unless
+    // accumulate() was asked for it, which costs a CPU pass over every pixel.
+    std::vector<float> fisher;
     size_t views = 0;                      // how many views were summed
 
     ViewTotals() = default;
@@ -34,10 +37,11 @@ using Progress = std::function<void(size_t done, size_t total)>;
 
 // Uploads `cloud` (replacing the renderer's scene, so that the statistics are indexed like it),
 // renders each of `views` (indices into `cameras`) with gather_stats and sums the statistics.
-// `settings` gives the background and SH degree; gather_stats is set here. Throws InputError for a
-// view index out of range.
+// `settings` gives the background and SH degree; gather_stats is set here. With `fisher` it also
+// sums the Fisher information of each view (ViewTotals::fisher; the cloud must be sanitised).
+// Throws InputError for a view index out of range.
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                       const std::vector<size_t>& views, const RenderSettings& settings,
-                      const Progress& progress = {});
+                      const Progress& progress = {}, bool fisher = false);
 
 }  // namespace vksplat::prune

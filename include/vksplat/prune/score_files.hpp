@@ -6,6 +6,7 @@
 //           footprint, views_visible (save_totals); every method can be scored from them, and the
 //           lossless pass reads their pixel counts. float32 keeps the counts exact up to 2^24 and,
 //           what the lossless pass needs, zero and non-zero apart. ViewTotals::views is not stored.
+//           Totals that hold fisher scores (ViewTotals::fisher) have it as a sixth column: [N, 6].
 #include <filesystem>
 #include <optional>
 #include <vector>

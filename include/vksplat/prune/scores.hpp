@@ -18,9 +18,10 @@ enum class ScoreMethod {
     blend_max,     // max over pixels and views of alpha * T
     volume_blend,  // blend * (V / V90)^0.1, V the product of the three scales (LightGaussian)
     random,        // seeded uniform in [0, 1): the baseline the others must beat
+    fisher,        // log det of the Fisher information of the pictures in mean and log-scale (PUP 3D-GS, fisher.hpp)
 };
 
-// "opacity", "footprint", "blend", "blend-max", "volume-blend", "random".
+// "opacity", "footprint", "blend", "blend-max", "volume-blend", "random", "fisher".
 std::string_view to_string(ScoreMethod method);
 // Every method's name, in the order of the enum.
 std::vector<std::string> score_method_names();
@@ -28,6 +29,8 @@ std::vector<std::string> score_method_names();
 ScoreMethod parse_score_method(std::string_view name);
 // Whether the method reads the view totals (opacity and random need no rendering).
 bool uses_views(ScoreMethod method);
+// Whether the method reads ViewTotals::fisher, which accumulate() gathers only when asked.
+bool needs_fisher(ScoreMethod method);
 
 // sigmoid(logit) per Gaussian.
 std::vector<float> opacities(const GaussianCloud& cloud);
@@ -35,7 +38,8 @@ std::vector<float> opacities(const GaussianCloud& cloud);
 // The scores of `method` for each Gaussian of `cloud`. `totals` must be the cloud's (same size)
 // for the methods that use views, and is ignored by the others; `seed` is read only by random,
 // whose scores are the same for a seed on every platform. Expects a sanitised cloud (finite scales).
-// Throws std::invalid_argument when the totals do not match the cloud.
+// Throws std::invalid_argument when the totals do not match the cloud, InputError for fisher from
+// totals without it (such as a file of five columns).
 std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, ScoreMethod method,
                          uint64_t seed = 0);
 
