@@ -99,6 +99,9 @@ int run_finetune(const FinetuneArgs& args) {
     std::printf("iterations: %llu (%llu skipped for non-finite gradients), %.1f s, GPU %.3f ms per iteration\n",
                 static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                 result.seconds, result.gpu_ms_per_iteration);
+    if (args.seconds)
+        std::printf("budget: %g s, in which %llu iterations were planned from the steps timed first\n", *args.seconds,
+                    static_cast<unsigned long long>(result.planned_iterations));
     for (const auto& stage : result.stages) std::printf("    %-20s %.3f ms\n", stage.stage.c_str(), stage.milliseconds);
     const size_t n = result.test_views.size();
     const char* held = result.held_out ? "" : ", also trained on: not held out";
