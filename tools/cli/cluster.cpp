@@ -91,7 +91,8 @@ void add_prune(CLI::App& c, ClusterArgs& a) {
                                  "for N iterations (without N: by the fraction dropped, as prune --recover)")
                         ->expected(0, 1)
                         ->default_str("auto")  // what a bare --recover reads, checked like a given value
-                        ->check(CLI::IsMember({"auto"}) | count_in(1));
+                        ->check(CLI::IsMember({"auto"}) | count_in(1))
+                        ->type_name("[N]");
     auto* recover_seconds = c.add_option("--recover-seconds", a.recover_seconds,
                                          "re-fit (as --recover does) for S seconds of wall time instead of N iterations");
     recover->excludes(c.get_option("--max-psnr-drop"));

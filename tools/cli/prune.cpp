@@ -222,7 +222,8 @@ void register_prune(CLI::App& app, Action& action) {
                         "with --max-mb the model chosen is re-fitted, and still fits")
         ->expected(0, 1)
         ->default_str("auto")
-        ->check(CLI::IsMember({"auto"}) | count_in(1));
+        ->check(CLI::IsMember({"auto"}) | count_in(1))
+        ->type_name("[N]");
     auto* recover_seconds = command->add_option("--recover-seconds", args->recover_seconds,
                         "re-fit (as --recover does) for S seconds of wall time in all, shared by the rounds,\n"
                         "instead of a count of iterations (with --max-psnr-drop: each probe's re-fit)");
