@@ -25,20 +25,27 @@
 // one splat at a time; the subgroup sums its pixels' gradients for the splat (9 reductions of
 // log2(subgroup size) shuffles each) and one invocation adds the sums.
 //
-// Per splat (PER_SPLAT 1): the subgroup's invocations hold consecutive splats of its list and its
-// pixels' replay state (transmittance, colour behind) lies in shared memory; at step s the
-// invocation of lane l replays pixel (s - l) mod W (W: the subgroup size) through its splat and
-// passes the state on to lane l + 1, which holds the next splat to the front. So every pixel
-// meets its splats one step after another in back-to-front order, exactly the per-pixel replay
-// (the same floats per pixel: only the order of the sums differs), while each splat's gradient
-// gathers in its invocation's registers over the W pixels and is added once, by all lanes
-// together rather than by one elected lane. A lane that has met all W pixels takes the splat W
-// places further to the front, so the subgroup stays full except for W - 1 steps of filling at
-// the start of each batch. What it trades: the 9 subgroup reductions and the single-lane atomics
-// of every splat against one shared-memory read and write of a pixel's state per step. That pays
-// where splats are large and many (every lane of a subgroup busy on the same list: the per-pixel
-// form's reductions then cost more than the replay itself); where a block's lists are short, the
-// W - 1 filling steps per batch dominate. Which wins depends on the GPU and the scene, so
+// Per splat (PER_SPLAT 1): the subgroup's invocations hold consecutive splats of its list, back to
+// front, and its W pixels' replay state (transmittance, colour behind) lies in shared memory (W:
+// the subgroup size). At step s the lane l replays pixel (s - l) mod W through its splat, and at
+// step s + 1 lane l + 1, holding the next splat to the front, takes that pixel on: every pixel
+// meets its splats one step after another in back-to-front order, the per-pixel replay exactly
+// (the same floats per pixel; only the order of the sums differs), while each splat's gradient
+// gathers in its lane's registers over the W pixels. A lane that has met all W pixels takes the
+// splat W places further to the front, so the subgroup is full but for W - 1 steps of filling per
+// batch, and the finished gradients are added every W steps by all lanes at once.
+//
+// Why this form: the per-pixel one spends, per splat and subgroup, 9 reductions (log2 W shuffles
+// and adds each, ~90 instructions where the replay itself is ~50) and 9 single-lane atomics; this
+// one spends one shared-memory read and write of a pixel's state per step and 9 atomic
+// instructions per W splats, and needs no workgroup barrier between steps (the state only moves
+// within the subgroup). That pays where lists are long and splats cover the subgroup's pixels:
+// large splats, many per tile, which is where a big GPU's backward time goes. The wavefront over
+// the whole tile (VkSplat's per-splat backward: a workgroup barrier per step, 511 steps per 256
+// splats) and a first pass storing each pixel's state per batch (a second walk of every list)
+// both cost more steps than they save on small-subgroup hardware; this one keeps the block lists
+// and only adds the filling. Where a block's lists are short, the W - 1 filling steps per batch
+// dominate and the per-pixel form wins. Which is faster depends on the GPU and the scene, so
 // DifferentiableRenderer times both on the first training steps and keeps the faster.
 //
 // Neither form assumes a subgroup size (lavapipe runs 4 or 8, AMD 64): both only need full
@@ -177,6 +184,11 @@ void replay_batch_per_splat(uint batch_start, uint my_block, uint walked_end, uv
     vec4 conic_o = vec4(0.0);
     vec3 color = vec3(0.0);
     SplatGradient grad = NO_GRADIENT;
+    // A splat that has met all the pixels waits with its gradient for the subgroup's next flush
+    // (every width steps), so that the lanes add theirs with the same instructions.
+    SplatGradient finished = NO_GRADIENT;
+    uint finished_gaussian = 0u;
+    bool waiting = false;
     for (uint step = 0u; step + 1u < count + width; ++step) {
         if (step >= lane) {
             const uint q = (step - lane) % width;  // the pixel: the q-th of the subgroup
@@ -202,8 +214,17 @@ void replay_batch_per_splat(uint batch_start, uint my_block, uint walked_end, uv
                     replay_splat(mean, conic_o, color, pixel, replay, grad);
                     pixel_replay[at] = vec4(replay.t, replay.behind);
                 }
-                if (q == width - 1u) add_splat_gradient(gaussian, grad);
+                if (q == width - 1u) {
+                    finished = grad;
+                    finished_gaussian = gaussian;
+                    waiting = true;
+                }
             }
+        }
+        // A lane finishes a splat every width steps, so no splat waits past the next flush.
+        if (step % width == width - 1u || step + 2u == count + width) {
+            if (waiting) add_splat_gradient(finished_gaussian, finished);
+            waiting = false;
         }
         // The next lane reads what this step wrote.
         subgroupMemoryBarrierShared();
