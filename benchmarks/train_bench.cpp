@@ -50,6 +50,7 @@ int main(int argc, char** argv) {
     app.add_option("--mcmc-growth", recipe.mcmc.growth);
     app.add_option("--mcmc-until", recipe.mcmc.refine_until);
     app.add_option("--mcmc-start-opacity", recipe.mcmc.start_opacity);
+    app.add_option("--mcmc-start-scale", recipe.mcmc.start_scale);
     app.add_option("--growth-exponent", recipe.budget.growth_exponent);
     app.add_option("--reach", recipe.budget.reach);
     app.add_option("--ranking", ranking, "mean or sum (of the densification gradient)");
@@ -64,6 +65,8 @@ int main(int argc, char** argv) {
     app.add_option("--blend-backward", blend_backward,
                    "fastest (time both forms on the first steps, keep the faster), per-pixel or per-splat")
         ->check(CLI::IsMember({"fastest", "per-pixel", "per-splat"}));
+    bool spatial_order = false;
+    app.add_flag("--spatial-order", spatial_order, "Morton order after each densification");
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);
     try {
@@ -89,6 +92,7 @@ int main(int argc, char** argv) {
         options.blend_backward = blend_backward == "per-pixel"   ? train::BlendBackward::per_pixel
                                  : blend_backward == "per-splat" ? train::BlendBackward::per_splat
                                                                  : train::BlendBackward::fastest;
+        options.spatial_order = spatial_order;
         RenderSettings settings;
         settings.background = options.background;
         const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {

@@ -124,7 +124,8 @@ std::string budget_text(const TrainRecipe& r) {
                std::to_string(m.refine_until) + ", growth " + std::to_string(m.growth) + ", opacity " +
                std::to_string(m.min_opacity) + ", regularisers " + std::to_string(m.opacity_regularization) + " " +
                std::to_string(m.scale_regularization) + ", noise " + std::to_string(m.position_noise) + ", start " +
-               std::to_string(m.start_opacity) + " " + std::to_string(r.start_fraction);
+               std::to_string(m.start_opacity) + " " + std::to_string(m.start_scale) + " " +
+               std::to_string(r.start_fraction);
     }
     const auto& b = r.budget;
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
@@ -292,6 +293,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         // reference's 0.1 would leave the first draws to chance.
         const float logit = float(std::log(mcmc.start_opacity / (1.0 - mcmc.start_opacity)));
         std::fill(subset->opacity_logits.begin(), subset->opacity_logits.end(), logit);
+        for (float& s : subset->log_scales) s += float(std::log(mcmc.start_scale));
         strategy = std::make_unique<train::McmcStrategy>(schedule, mcmc);
         mcmc_strategy = static_cast<train::McmcStrategy*>(strategy.get());
         train::use_mcmc_terms(mcmc, train_options);
@@ -312,6 +314,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.background = options.background;
     train_options.deterministic = options.deterministic;
     train_options.blend_backward = options.blend_backward;
+    train_options.spatial_order = options.spatial_order;
     train_options.position_schedule = train::PositionSchedule::decay;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =

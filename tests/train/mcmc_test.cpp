@@ -75,7 +75,9 @@ TEST(PlanRelocation, MovesTheTransparentAndGrowsKeepingEachPlaceAsItWas) {
     for (size_t j = 0; j < plan.sources.size(); ++j) {
         EXPECT_NE(plan.sources[j], 1u);
         EXPECT_NE(plan.sources[j], 4u);
-        if (j + 1 < plan.override_from) EXPECT_LT(plan.sources[j], plan.sources[j + 1]);
+        if (j + 1 < plan.override_from) {
+            EXPECT_LT(plan.sources[j], plan.sources[j + 1]);
+        }
     }
     // Each live Gaussian's place composites to the opacity it had (1 - prod (1 - o_copy)), its
     // copies sit where it was, and their scales shrank by the same factor as the formula's.
@@ -169,8 +171,11 @@ TEST_F(McmcTraining, NoiseMovesOnlyTheTransparentAndRegularisersShrinkTheUnseen)
         const bool same = moved.positions[3 * i] == plain.positions[3 * i] &&
                           moved.positions[3 * i + 1] == plain.positions[3 * i + 1] &&
                           moved.positions[3 * i + 2] == plain.positions[3 * i + 2];
-        if (i % 2) EXPECT_TRUE(same) << i;  // opacity 0.88: the gate is ~e^-89
-        else transparent_moved += !same;
+        if (i % 2) {
+            EXPECT_TRUE(same) << i;  // opacity 0.88: the gate is ~e^-89
+        } else {
+            transparent_moved += !same;
+        }
     }
     EXPECT_EQ(transparent_moved, (start.size() - 1 + 1) / 2);
 

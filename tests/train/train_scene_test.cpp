@@ -198,6 +198,18 @@ TEST_F(TrainScene, ABudgetLosesLessThanTheCapAtHalfTheCount) {
     EXPECT_LE(budget.gaussians, half.densify.max_gaussians);
     EXPECT_LE(capped.gaussians, half.densify.max_gaussians);
     EXPECT_GT(budget.test.mean_psnr, capped.test.mean_psnr + 0.3);
+    // 3DGS-MCMC, its refinements as often as this short run allows: it fills the budget exactly.
+    // (Its quality is not asserted: here it scored 22.8 dB against the cap's 23.8, and on bonsai
+    // it trails the budget recipe too; benchmarks/RESULTS.md.)
+    half.strategy = jobs::DensifyStrategy::mcmc;
+    half.mcmc.refine_from = 50;
+    half.mcmc.refine_until = 600;
+    half.mcmc.refine_every = 50;
+    half.mcmc.growth = 1.3;
+    const jobs::TrainResult mcmc = train(data, half, "mcmc");
+    EXPECT_EQ(mcmc.strategy, "mcmc");
+    EXPECT_EQ(mcmc.gaussians, half.densify.max_gaussians);
+    EXPECT_GT(mcmc.mcmc_events.added, 0u);
     // metrics.json has the count over the run, report.html its chart.
     EXPECT_TRUE(fs::exists(dir / "budget" / "report.html"));
     EXPECT_TRUE(fs::exists(dir / "budget" / "training_gaussians.svg"));

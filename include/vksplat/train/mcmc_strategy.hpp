@@ -27,6 +27,7 @@ struct McmcSchedule {
     double scale_regularization = 0.01;
     double position_noise = 5e5;
     double start_opacity = 0.5;          // the paper's starting opacity (the reference's is 0.1)
+    double start_scale = 1.0;            // factor on the starting scales (gsplat's MCMC preset: 0.1)
 };
 
 // Copies the schedule's loss and noise terms into the trainer's options.
