@@ -1,8 +1,9 @@
 // The training passes of a view, recorded by src/train/differentiable_renderer.cpp
 // (DifferentiableRenderer): train_activate.comp, then the render passes and blend_train.comp
 // (whose push is render's BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
-// blend_backward_cas.comp, or blend_backward_fixed.comp and splat_grads_from_fixed.comp) and
-// preprocess_backward.comp.
+// blend_backward_cas.comp, their per-splat forms blend_backward_per_splat.comp and
+// blend_backward_per_splat_cas.comp, or blend_backward_fixed.comp and splat_grads_from_fixed.comp)
+// and preprocess_backward.comp.
 #ifndef VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 #define VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 
@@ -30,7 +31,8 @@ struct TrainActivatePush {
 };
 
 // blend_backward.comp, blend_backward_cas.comp, blend_backward_fixed.comp (whose splat_grads
-// holds Int64s): one workgroup per tile.
+// holds Int64s), blend_backward_per_splat.comp, blend_backward_per_splat_cas.comp: one workgroup
+// per tile.
 struct BlendBackwardPush {
     CameraBuffer camera;
     UVec2s ranges;
