@@ -72,6 +72,16 @@ expect prune-budget 0 "against the photos" -- "$vksplat" prune "$work/demo/demo.
   --background 1,1,1 -o "$work/budget.ply"
 expect prune-one-selector any-failure "--ratio excludes --keep" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/cameras.json" --method blend --ratio 0.2 --keep 3 -o "$work/x.ply"
+# fisher (PUP 3D-GS): its view totals keep the scores as a sixth column, which a later run selects
+# from without rendering; totals saved for another method hold none and are refused for it.
+expect prune-fisher 0 "Gaussians: 38605 -> 19302" -- "$vksplat" prune "$work/demo/demo.ply" --cameras "$work/cameras.json" \
+  --method fisher --ratio 0.5 --background 1,1,1 --save-totals "$work/fisher_totals.npy" -o "$work/fisher_half.ply"
+expect prune-fisher-from-totals 0 "Gaussians: 38605 -> 3860" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method fisher --load-scores "$work/fisher_totals.npy" --ratio 0.9 \
+  --background 1,1,1 -o "$work/fisher_tenth.ply"
+expect prune-fisher-needs-its-totals 2 "--method fisher: the view totals hold no Fisher scores" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method fisher --load-scores "$work/totals.npy" --ratio 0.5 \
+  -o "$work/fisher_none.ply"
 
 # Bench: per-stage times and the JSON, a tiled scene, and the refusal to overwrite its output.
 expect bench 0 "mean of per-view medians" -- "$vksplat" bench "$work/demo/demo.ply" --cameras "$work/cameras.json" \
