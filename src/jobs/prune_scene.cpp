@@ -176,7 +176,8 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
     RecoverResult recovered = prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos, recover,
                                                 {}, report);
-    for (const auto& round : recovered.rounds) result.recover_rounds.push_back(round.kept);
+    for (const auto& round : recovered.rounds)
+        result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});
     return std::move(recovered.cloud);
 }
 

@@ -109,5 +109,23 @@ TEST_F(RecoverChecks, TheRoundsTakeExactlyTheIterationsAskedFor) {
     EXPECT_EQ(steps, 7u);
 }
 
+// A time budget chooses the rounds' iterations: the result says how many each took, and in what time.
+TEST_F(RecoverChecks, EachRoundSaysWhatItsReFitTook) {
+    auto options = recover_options();
+    options.recover->iterations.reset();
+    options.recover->seconds = 2;
+    options.recover->rounds = 2;
+    const jobs::PruneResult result = jobs::prune_scene(*renderer, cloud, cameras, options);
+    ASSERT_EQ(result.recover_rounds.size(), 2u);
+    EXPECT_GT(result.recover_rounds[0].kept, result.recover_rounds[1].kept);
+    double seconds = 0;
+    for (const auto& round : result.recover_rounds) {
+        EXPECT_GE(round.iterations, 1u);
+        EXPECT_GT(round.seconds, 0.0);
+        seconds += round.seconds;
+    }
+    EXPECT_LT(seconds, 10.0) << "the rounds' steps overran a 2 s budget";
+}
+
 }  // namespace
 }  // namespace vksplat::test

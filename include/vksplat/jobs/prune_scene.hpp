@@ -80,7 +80,14 @@ struct PruneResult {
     std::optional<eval::Quality> before;
     eval::Quality after;
     std::optional<prune::BudgetResult> budget;  // with a Quality- or SizeBudget selector: every probe
-    std::vector<size_t> recover_rounds;         // with recover and no budget: Gaussians kept in each round
+    // With recover and no budget, each round: the Gaussians it kept, and its re-fit's iterations and
+    // wall time (the iterations a time budget or the fraction dropped chose are told no other way).
+    struct RecoverRoundReport {
+        size_t kept = 0;
+        uint64_t iterations = 0;
+        double seconds = 0;
+    };
+    std::vector<RecoverRoundReport> recover_rounds;
 };
 
 struct PruneProgress {
