@@ -178,6 +178,7 @@ void replay_batch_per_splat(uint batch_start, uint my_block, uint walked_end, uv
         if (batch_start + block_hits[list + middle] < walked_end) count = middle + 1u;
         else high = middle;
     }
+    if (count == 0u) return;
     // The lane's splat: the m-th from the back, m = lane, lane + width, ...
     uint position = 0u, gaussian = 0u;
     vec2 mean = vec2(0.0);

@@ -22,6 +22,16 @@ namespace vksplat::train {
 
 using namespace shader::train;
 
+void BlendBackwardChoice::scene_size(uint32_t gaussians) {
+    if (wanted_ != BlendBackward::fastest) return;
+    if (per_pixel_ms_.empty() && per_splat_ms_.empty()) timed_gaussians_ = gaussians;
+    if (uint64_t(gaussians) <= 2 * uint64_t(timed_gaussians_) && 2 * uint64_t(gaussians) >= timed_gaussians_) return;
+    chosen_ = BlendBackward::fastest;
+    per_pixel_ms_.clear();
+    per_splat_ms_.clear();
+    timed_gaussians_ = gaussians;
+}
+
 BlendBackward BlendBackwardChoice::next() const {
     if (chosen_ != BlendBackward::fastest) return chosen_;
     return per_pixel_ms_.size() <= per_splat_ms_.size() ? BlendBackward::per_pixel : BlendBackward::per_splat;
@@ -153,6 +163,7 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
                                              VkDeviceAddress pixel_grad) {
     auto& f = frame_;
+    choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
     const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
     stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * 4);

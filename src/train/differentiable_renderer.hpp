@@ -38,25 +38,29 @@ struct PreprocessBackwardKernel;
 namespace vksplat::train {
 
 // Which form of the blend backward runs next (BlendBackward): the one asked for, or, asked for
-// `fastest`, the two in turn until each has kTrials timings, then for good the one whose median is
-// lower (ties: per pixel). Medians, because a step's time also moves with its view and with what
-// else the GPU is doing.
+// `fastest`, the two in turn until each has kTrials timings, then the one whose median is lower
+// (ties: per pixel), until the scene has doubled or halved since the timings began (training from
+// SfM points grows it a hundredfold, and larger splats favour per splat): then both are timed
+// again. Medians, because a step's time also moves with its view and with what else the GPU does.
 class BlendBackwardChoice {
 public:
     static constexpr size_t kTrials = 10;
 
-    explicit BlendBackwardChoice(BlendBackward wanted) : chosen_(wanted) {}
+    explicit BlendBackwardChoice(BlendBackward wanted) : wanted_(wanted), chosen_(wanted) {}
+    // Before a step on a scene of `gaussians`.
+    void scene_size(uint32_t gaussians);
     // per_pixel or per_splat.
     BlendBackward next() const;
     // The GPU time of a blend backward that ran in `form`; ignored once chosen.
     void timed(BlendBackward form, double milliseconds);
     // The queue gave no timings: settles on per pixel, the form that ran before there was a choice.
     void untimed();
-    // per_pixel or per_splat once asked for or measured; `fastest` while still measuring.
+    // per_pixel or per_splat once asked for or measured; `fastest` while measuring.
     BlendBackward chosen() const { return chosen_; }
 
 private:
-    BlendBackward chosen_;
+    BlendBackward wanted_, chosen_;
+    uint32_t timed_gaussians_ = 0;  // the scene's size when the timings began
     std::vector<double> per_pixel_ms_, per_splat_ms_;
 };
 

@@ -291,12 +291,14 @@ TEST_F(Gradients, PerSplatRefusesFixedPointSums) {
 }
 
 // The choice of form, given timings: both in turn until each has kTrials, then the lower median
-// for good; a form asked for is kept; no timings settle on per pixel.
+// until the scene doubles or halves; a form asked for is kept; no timings settle on per pixel.
 TEST(BlendBackwardChoice, TimesBothInTurnThenKeepsTheLowerMedian) {
     using train::BlendBackward;
+    constexpr uint32_t kGaussians = 1000;
     const auto measure = [](double per_pixel_ms, double per_pixel_outlier_ms, double per_splat_ms) {
         train::BlendBackwardChoice choice(BlendBackward::fastest);
         for (size_t i = 0; i < 2 * train::BlendBackwardChoice::kTrials; ++i) {
+            choice.scene_size(kGaussians + uint32_t(i));  // densification between the timings
             EXPECT_EQ(choice.chosen(), BlendBackward::fastest);
             const BlendBackward form = choice.next();
             EXPECT_EQ(form, i % 2 == 0 ? BlendBackward::per_pixel : BlendBackward::per_splat);
@@ -313,6 +315,20 @@ TEST(BlendBackwardChoice, TimesBothInTurnThenKeepsTheLowerMedian) {
     EXPECT_EQ(faster_per_splat.next(), BlendBackward::per_splat);
     // One slow step (the first, say, with its pipelines cold) does not outvote nine.
     EXPECT_EQ(measure(1.0, 100.0, 1.5).chosen(), BlendBackward::per_pixel);
+    // A scene grown or shrunk twofold since is timed again; less change keeps the choice.
+    for (const uint32_t grown : {2 * kGaussians, kGaussians / 2}) {
+        train::BlendBackwardChoice choice = measure(2.0, 2.0, 1.5);
+        choice.scene_size(grown);
+        EXPECT_EQ(choice.chosen(), BlendBackward::per_splat) << grown;
+    }
+    for (const uint32_t changed : {2 * kGaussians + 1, kGaussians / 2 - 1}) {
+        train::BlendBackwardChoice choice = measure(2.0, 2.0, 1.5);
+        choice.scene_size(changed);
+        EXPECT_EQ(choice.chosen(), BlendBackward::fastest) << changed;
+        EXPECT_EQ(choice.next(), BlendBackward::per_pixel) << changed;
+        choice.timed(BlendBackward::per_pixel, 1.0);
+        EXPECT_EQ(choice.next(), BlendBackward::per_splat) << changed;
+    }
 
     train::BlendBackwardChoice asked(BlendBackward::per_splat);
     asked.timed(BlendBackward::per_splat, 50.0);

@@ -33,7 +33,8 @@ enum class GradientSums { device_default, compare_and_swap, fixed_point };
 // each invocation holds one splat of its subgroup's list and sums its gradient over the subgroup's
 // pixels in registers. The same gradients up to the order of the float additions; which is faster
 // depends on the GPU and the scene, so `fastest` times both on the first steps (alternating, the
-// median of 10 each) and keeps the faster. fixed_point sums run per pixel only (fastest then means
+// median of 10 each) and keeps the faster, timing them again whenever the scene has doubled or
+// halved since. fixed_point sums run per pixel only (fastest then means
 // per_pixel; per_splat with them is refused), so that --deterministic runs never switch form.
 enum class BlendBackward { fastest, per_pixel, per_splat };
 
