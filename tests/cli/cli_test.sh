@@ -318,6 +318,10 @@ expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "
   --background 1,1,1 -o "$work/recovered.ply"
 expect prune-recover-needs-photos 2 "--recover: re-fits to the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 -o "$work/recovered_nophotos.ply"
+# Each round after the first ranks the re-fitted model by fisher again, so it gathers fisher too.
+expect prune-fisher-recover 0 "round 2: pruned to 19302" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --method fisher --ratio 0.5 --recover 6 --rounds 2 --images "$work/photos3" \
+  --background 1,1,1 -o "$work/fisher_recovered.ply"
 # --recover-seconds: a wall-time budget instead of a count (issue 30), refused unless a positive
 # number of seconds and alone; a bare --recover takes its count from the fraction dropped.
 for seconds in 0 -3 nan inf; do
