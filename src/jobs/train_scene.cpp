@@ -339,6 +339,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     static_cast<train::LoopResult&>(result) =
         train::run_training_loop(*trainer, *strategy, data.cameras, data.train_views, train_photos, loop, progress);
     result.evaluate_seconds = result.snapshot_seconds;
+    if (train_options.blend_backward == train::BlendBackward::fastest &&
+        trainer->blend_backward() != train::BlendBackward::fastest)
+        notice(std::string("blend backward: ") +
+               (trainer->blend_backward() == train::BlendBackward::per_splat ? "per splat" : "per pixel") +
+               ", the faster of its two forms on this device");
     if (budget_strategy) result.budget_events = budget_strategy->events();
     if (mcmc_strategy) result.mcmc_events = mcmc_strategy->events();
     result.gaussians = trainer->size();

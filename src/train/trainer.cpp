@@ -219,6 +219,7 @@ StepResult Trainer::step(const Camera& camera, const Photo& photo) { return impl
 uint64_t Trainer::iteration() const { return impl_->iteration; }
 uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
 double Trainer::position_learning_rate() const { return impl_->position_rate(); }
+BlendBackward Trainer::blend_backward() const { return impl_->renderer.blend_backward_choice().chosen(); }
 void Trainer::set_sh_degree(int degree) { impl_->sh_degree = std::clamp(degree, 0, 3); }
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {

@@ -169,6 +169,9 @@ public:
     uint64_t skipped_steps() const;
     // The position learning rate the next step uses.
     double position_learning_rate() const;
+    // The blend backward's form: the one asked for (TrainOptions::blend_backward), or the faster
+    // one timed; BlendBackward::fastest while still timing.
+    BlendBackward blend_backward() const;
     // SH bands evaluated from the next step on (the trainer raises it as training goes).
     void set_sh_degree(int degree);
     // Clones, splits and prunes by the gradients gathered since the last call (see DensifyRules),
