@@ -144,10 +144,9 @@ void parallel_for(size_t count, unsigned workers, Fn fn) {
 
 unsigned worker_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
-// The visible splats overlapping each tile, in the reference's blend order (by float depth, ties
-// by index).
-std::vector<std::vector<uint32_t>> tile_lists(const std::vector<reference::ProjectedGaussian>& splats, int tiles_x,
-                                              int tiles_y) {
+// The visible splats overlapping each tile, in index order.
+std::vector<std::vector<uint32_t>> tile_members(const std::vector<reference::ProjectedGaussian>& splats, int tiles_x,
+                                                int tiles_y) {
     std::vector<std::vector<uint32_t>> lists(size_t(tiles_x) * size_t(tiles_y));
     for (uint32_t i = 0; i < splats.size(); ++i) {
         const auto& s = splats[i];
@@ -155,10 +154,13 @@ std::vector<std::vector<uint32_t>> tile_lists(const std::vector<reference::Proje
         for (int ty = s.rect_min.y; ty < s.rect_max.y; ++ty)
             for (int tx = s.rect_min.x; tx < s.rect_max.x; ++tx) lists[size_t(ty) * tiles_x + tx].push_back(i);
     }
-    for (auto& list : lists)
-        std::stable_sort(list.begin(), list.end(),
-                         [&](uint32_t l, uint32_t r) { return float(splats[l].depth) < float(splats[r].depth); });
     return lists;
+}
+
+// A tile's members in the reference's blend order: by depth as a float, ties by index.
+void sort_for_blending(std::vector<uint32_t>& list, const std::vector<reference::ProjectedGaussian>& splats) {
+    std::stable_sort(list.begin(), list.end(),
+                     [&](uint32_t l, uint32_t r) { return float(splats[l].depth) < float(splats[r].depth); });
 }
 
 // One splat blended into a pixel.
@@ -248,13 +250,14 @@ void FisherInformation::add_view(const Camera& camera) {
 
     const int tiles_x = (camera.width + int(kTileWidth) - 1) / int(kTileWidth);
     const int tiles_y = (camera.height + int(kTileHeight) - 1) / int(kTileHeight);
-    const auto lists = tile_lists(view.projected, tiles_x, tiles_y);
+    auto lists = tile_members(view.projected, tiles_x, tiles_y);
     // Each worker sums into its own matrices (kept over the views, added up when asked for): no two
     // threads ever write one Gaussian's sums.
     if (partial_.size() < workers) partial_.resize(workers);
     parallel_for(lists.size(), workers, [&](size_t tile, unsigned worker) {
         if (lists[tile].empty()) return;
         if (partial_[worker].empty()) partial_[worker].assign(n, FisherMatrix{});
+        sort_for_blending(lists[tile], view.projected);  // here, so that the sorts share the cores too
         std::vector<Blended> blended;
         const int x0 = int(tile % tiles_x) * int(kTileWidth), y0 = int(tile / tiles_x) * int(kTileHeight);
         for (int y = y0; y < std::min(y0 + int(kTileHeight), camera.height); ++y)
