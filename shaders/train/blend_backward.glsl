@@ -117,17 +117,18 @@ struct PixelBackward {
     uint last;              // one past the list position of the last splat it blended
 };
 
-// Where a pixel's replay stands: the transmittance in front of the splat replayed last (the
-// final one before the first) and the colour blended behind that splat, per unit of it.
+// Where a pixel's replay stands: the transmittance in front of the splat replayed last (before
+// the first, the final transmittance) and the colour blended behind that splat, per unit of it.
 struct Replay {
     float t;
     vec3 behind;
 };
 
 // Replays one splat the pixel blended (its list position below pixel.last): steps `replay` to the
-// front of it and adds the pixel's derivatives to `grad`. The one formula of both forms.
+// front of it and gives the derivatives of the pixel's loss as `grad`. The one formula of both forms.
 void replay_splat(vec2 mean, vec4 conic_o, vec3 color, PixelBackward pixel, inout Replay replay,
-                  inout SplatGradient grad) {
+                  out SplatGradient grad) {
+    grad = NO_GRADIENT;
     const vec2 d = mean - pixel.pixel;
     const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
     if (power > 0.0) return;
@@ -136,15 +137,15 @@ void replay_splat(vec2 mean, vec4 conic_o, vec3 color, PixelBackward pixel, inou
     const float alpha = min(MAX_ALPHA, unclamped);
     if (alpha < MIN_ALPHA) return;
     replay.t /= 1.0 - alpha;
-    grad.color += alpha * replay.t * pixel.dl_dpixel;
+    grad.color = alpha * replay.t * pixel.dl_dpixel;
     const float dl_dalpha =
         dot(color - replay.behind, pixel.dl_dpixel) * replay.t - pixel.final_t / (1.0 - alpha) * pixel.background_grad;
     replay.behind = alpha * color + (1.0 - alpha) * replay.behind;
     if (unclamped >= MAX_ALPHA) return;
-    grad.opacity += g * dl_dalpha;
+    grad.opacity = g * dl_dalpha;
     const float dl_dpower = conic_o.w * g * dl_dalpha;
-    grad.mean += dl_dpower * vec2(-conic_o.x * d.x - conic_o.y * d.y, -conic_o.y * d.x - conic_o.z * d.y);
-    grad.conic += dl_dpower * vec3(-0.5 * d.x * d.x, -d.x * d.y, -0.5 * d.y * d.y);
+    grad.mean = dl_dpower * vec2(-conic_o.x * d.x - conic_o.y * d.y, -conic_o.y * d.x - conic_o.z * d.y);
+    grad.conic = dl_dpower * vec3(-0.5 * d.x * d.x, -d.x * d.y, -0.5 * d.y * d.y);
 }
 
 #if PER_SPLAT
@@ -212,8 +213,13 @@ void replay_batch_per_splat(uint batch_start, uint my_block, uint walked_end, uv
                                                               dl_final.a, dot(background, dl_final.rgb), last);
                     const vec4 state = pixel_replay[at];
                     Replay replay = Replay(state.x, state.yzw);
-                    replay_splat(mean, conic_o, color, pixel, replay, grad);
+                    SplatGradient here;
+                    replay_splat(mean, conic_o, color, pixel, replay, here);
                     pixel_replay[at] = vec4(replay.t, replay.behind);
+                    grad.mean += here.mean;
+                    grad.conic += here.conic;
+                    grad.opacity += here.opacity;
+                    grad.color += here.color;
                 }
                 if (q == width - 1u) {
                     finished = grad;
