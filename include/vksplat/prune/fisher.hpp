@@ -10,9 +10,12 @@
 // sees then scores 6 log(epsilon), below every Gaussian some pixel sees, instead of -infinity.
 //
 // Computed on the CPU in double precision from the reference rasterizer's projection
-// (reference::project) and its blending rules: exact derivatives of the picture it renders, the
-// GPU renderer's to float rounding. Cost: a walk of every pixel's tile list per view and the
-// analytic Jacobian of each visible Gaussian's projection, spread over the host's cores.
+// (reference::project) and its blending rules: analytic derivatives of the picture it renders (the
+// SH colour's along the view direction by central differences in double, to about 1e-12), which is
+// the GPU renderer's to float rounding. On the CPU because the per-pixel walk needs the renderer's
+// tile lists, which the prune module does not reach into. Cost: a walk of every pixel's tile list
+// per view and the Jacobian of each visible Gaussian's projection, spread over the host's cores,
+// with a 6x6 sum per Gaussian per core. The sums depend on the number of cores by rounding only.
 //
 //   prune::FisherInformation fisher(cloud, settings);
 //   for (size_t v : views) fisher.add_view(cameras[v]);
@@ -27,8 +30,10 @@
 
 namespace vksplat::prune {
 
-// Added to each eigenvalue of F before the log: in units of colour^2 per (world unit or log-scale
-// unit)^2, far below what a Gaussian covering a single pixel of one view shows.
+// Added to each eigenvalue of F before the log, in colour^2 per (world unit or log-scale unit)^2:
+// small against what a Gaussian that covers pixels shows along its mean, but a direction the
+// views hardly constrain (the thickness of a flat Gaussian seen face-on) can fall near it, and then
+// it bounds that direction's share of the score.
 inline constexpr double kFisherEpsilon = 1e-12;
 
 // Row-major 6x6 over (mean x, y, z, log-scale 0, 1, 2).
