@@ -32,8 +32,11 @@ namespace vksplat::prune {
 
 // Added to each eigenvalue of F before the log, in colour^2 per (world unit or log-scale unit)^2:
 // small against what a Gaussian that covers pixels shows along its mean, but a direction the
-// views hardly constrain (the thickness of a flat Gaussian seen face-on) can fall near it, and then
-// it bounds that direction's share of the score.
+// views hardly constrain can fall near it, and then it bounds that direction's share of the score.
+// One view alone leaves a direction with none at all but for the colour's view dependence (the
+// footprint on screen has 5 parameters, the Gaussian 6): on 4 views of snowmiku, 17,061 of the
+// 46,543 Gaussians some pixel sees have a zero eigenvalue, so they score below every Gaussian seen
+// from two sides, by their 5 others.
 inline constexpr double kFisherEpsilon = 1e-12;
 
 // Row-major 6x6 over (mean x, y, z, log-scale 0, 1, 2).
