@@ -35,8 +35,8 @@ namespace vksplat::prune {
 // views hardly constrain can fall near it, and then it bounds that direction's share of the score.
 // One view alone leaves a direction with none at all but for the colour's view dependence (the
 // footprint on screen has 5 parameters, the Gaussian 6): on 4 views of snowmiku, 17,061 of the
-// 46,543 Gaussians some pixel sees have a zero eigenvalue, so they score below every Gaussian seen
-// from two sides, by their 5 others.
+// 46,543 Gaussians some pixel sees have a zero eigenvalue, which counts as log(1e-12) = -27.6 in
+// their score.
 inline constexpr double kFisherEpsilon = 1e-12;
 
 // Row-major 6x6 over (mean x, y, z, log-scale 0, 1, 2).
