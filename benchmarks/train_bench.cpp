@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 #include "vksplat/error.hpp"
 #include "vksplat/eval/metrics.hpp"
@@ -36,7 +37,8 @@ int main(int argc, char** argv) {
     app.add_option("--background", background)->delimiter(',')->expected(3);
     app.add_option("--iters", recipe.iterations);
     app.add_option("--max-gaussians", max_gaussians);
-    app.add_option("--densify-until", recipe.densify_until);
+    std::optional<uint64_t> densify_until;
+    app.add_option("--densify-until", densify_until, "the window of whichever recipe runs");
     app.add_option("--grad-threshold", recipe.densify.grad_threshold);
     app.add_option("--max-screen-radius", recipe.densify.max_screen_radius,
                    "> 0: after the first opacity reset, also prune radii above it (pixels)");
@@ -65,12 +67,11 @@ int main(int argc, char** argv) {
     app.add_option("--blend-backward", blend_backward,
                    "fastest (time both forms on the first steps, keep the faster), per-pixel or per-splat")
         ->check(CLI::IsMember({"fastest", "per-pixel", "per-splat"}));
-    bool spatial_order = false;
-    app.add_flag("--spatial-order", spatial_order, "Morton order after each densification");
     app.add_option("--device", device);
     CLI11_PARSE(app, argc, argv);
     try {
         recipe.densify.max_gaussians = max_gaussians;
+        if (densify_until) recipe.densify_until = recipe.budget.densify_until = *densify_until;
         recipe.strategy = jobs::parse_densify_strategy(strategy);
         if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");
         recipe.budget.ranking = ranking == "sum" ? train::DensifyRanking::gradient_sum : train::DensifyRanking::mean_gradient;
@@ -92,7 +93,6 @@ int main(int argc, char** argv) {
         options.blend_backward = blend_backward == "per-pixel"   ? train::BlendBackward::per_pixel
                                  : blend_backward == "per-splat" ? train::BlendBackward::per_splat
                                                                  : train::BlendBackward::fastest;
-        options.spatial_order = spatial_order;
         RenderSettings settings;
         settings.background = options.background;
         const jobs::TestMeasure measure = [&](const GaussianCloud& scene, const eval::TestViews& views) {

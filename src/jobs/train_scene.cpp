@@ -130,7 +130,8 @@ std::string budget_text(const TrainRecipe& r) {
     const auto& b = r.budget;
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
-           std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + ", start " + std::to_string(r.start_fraction);
+           std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
+           ", start " + std::to_string(r.start_fraction);
 }
 
 // What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the
@@ -264,6 +265,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                                             "fewer than the " + std::to_string(data.initial.size()) +
                                             " training starts from; raise it or lower --resolution-scale");
     train::ReferenceSchedule schedule = recipe;
+    if (strategy_kind == DensifyStrategy::budget) schedule.densify_until = recipe.budget.densify_until;
     if (recipe.densify.max_gaussians > room)
         notice("--max-gaussians " + std::to_string(recipe.densify.max_gaussians) + ": the memory budget holds about " +
                std::to_string(room) + " Gaussians at this resolution; training to " + std::to_string(room));
@@ -301,7 +303,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         train::BudgetSchedule budget = recipe.budget;
         budget.budget = budget_count;
         budget.start = subset ? subset->size() : data.initial.size();
-        budget.settle_at = std::min(recipe.densify_until, recipe.iterations);
+        budget.settle_at = std::min(schedule.densify_until, recipe.iterations);
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
@@ -314,7 +316,6 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.background = options.background;
     train_options.deterministic = options.deterministic;
     train_options.blend_backward = options.blend_backward;
-    train_options.spatial_order = options.spatial_order;
     train_options.position_schedule = train::PositionSchedule::decay;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =

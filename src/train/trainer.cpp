@@ -15,7 +15,6 @@
 #include "train/differentiable_renderer.hpp"
 #include "train/loss_passes.hpp"
 #include "train/relocation.hpp"
-#include "train/spatial_order.hpp"
 #include "train/trainable_scene.hpp"
 #include "shaders/train/adam_step.kernel.hpp"
 #include "shaders/train/position_noise.kernel.hpp"
@@ -126,7 +125,6 @@ struct Trainer::Impl {
     }
 
     StepResult step(const Camera& camera, const Photo& target);
-    void reorder_spatially();
     void load_checkpoint(const std::filesystem::path& path);
 };
 
@@ -227,20 +225,7 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
     TrainableScene next = d.densify.apply(d.scene, plan);
     d.scene = std::move(next);
-    if (d.options.spatial_order) d.reorder_spatially();
     return plan.report;
-}
-
-// A gather by the Morton order: every Gaussian keeps its parameters and moments (the densification
-// sums start afresh, as they do after densifying).
-void Trainer::Impl::reorder_spatially() {
-    const uint32_t n = scene.layout.count;
-    static_assert(shader::train::kPositionsAt == 0, "positions lead the parameter array");
-    const std::vector<float> positions = gpu::read_buffer<float>(context, scene.params, uint64_t(n) * 3);
-    DensifyPlan plan;
-    plan.sources = morton_order(positions.data(), n);
-    plan.fresh_from = plan.override_from = n;
-    scene = densify.apply(scene, plan);
 }
 
 RelocationReport Trainer::relocate(const RelocationRules& rules) {
@@ -248,7 +233,6 @@ RelocationReport Trainer::relocate(const RelocationRules& rules) {
     const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
     if (relocation.report.relocated + relocation.report.added > 0)
         d.scene = d.densify.apply(d.scene, relocation.plan);
-    if (d.options.spatial_order) d.reorder_spatially();
     return relocation.report;
 }
 

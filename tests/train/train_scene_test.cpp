@@ -103,7 +103,7 @@ protected:
         r.sh_degree = 1;
         r.sh_degree_interval = 200;
         r.densify_from = 100;
-        r.densify_until = densify_until;
+        r.densify_until = r.budget.densify_until = densify_until;
         r.densify_interval = 100;
         r.opacity_reset_interval = 100000;
         return r;

@@ -1,6 +1,7 @@
 // vksplat train: trains a scene from photos with the reference 3DGS recipe on the GPU.
 #include <cstdio>
 #include <memory>
+#include <optional>
 #include <unistd.h>
 
 #include "commands.hpp"
@@ -16,7 +17,7 @@ struct TrainArgs {
     GpuOptions gpu;
     std::string data, out;
     uint64_t iterations = 30000, test_every = 8, checkpoint_every = 5000, seed = 0;
-    uint64_t densify_until = jobs::TrainRecipe{}.densify_until;
+    std::optional<uint64_t> densify_until;
     double grad_threshold = train::DensifyRules{}.grad_threshold;
     size_t max_gaussians = 0;
     std::string strategy = "automatic";
@@ -35,7 +36,8 @@ int run_train(const TrainArgs& args) {
     options.recipe.budget.peak = args.budget_peak;
     options.evaluate_every = args.evaluate_every;
     options.deterministic = args.deterministic;
-    options.recipe.densify_until = args.densify_until;
+    // One option for the window of whichever recipe runs; each has its own default.
+    if (args.densify_until) options.recipe.densify_until = options.recipe.budget.densify_until = *args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
     options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
     options.seed = args.seed;
@@ -141,8 +143,8 @@ void register_train(CLI::App& app, Action& action) {
     command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
         ->check(number_in(0.01, 1.0));
     command->add_option("--densify-until", args->densify_until,
-                        "last iteration that clones, splits and prunes (0: never densify)")
-        ->capture_default_str()
+                        "last iteration that clones, splits and prunes (0: never densify; default 15000, "
+                        "and 5000 for the budget recipe)")
         ->check(count_in(0));
     command->add_option("--densify-grad-threshold", args->grad_threshold,
                         "mean NDC gradient of a Gaussian's projected mean above which it is cloned or split")

@@ -100,7 +100,6 @@ struct TrainOptions {
     uint64_t evaluate_every = 0;
     bool deterministic = false;         // train::TrainOptions::deterministic
     train::BlendBackward blend_backward = train::BlendBackward::fastest;  // train::TrainOptions::blend_backward
-    bool spatial_order = false;         // train::TrainOptions::spatial_order
 };
 
 // The run as it went: after every 500th step (and the last) the Gaussians held; where measured

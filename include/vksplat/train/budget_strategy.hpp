@@ -46,6 +46,11 @@ struct BudgetSchedule {
     // The price: the peak's memory and time until settle_at.
     double peak = 2.0;
     uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
+    // Where vksplat::jobs ends this recipe's densification window (the reference's ends at 15,000):
+    // settling earlier leaves more steps to re-fit what is kept. Bonsai (means of 3, H100/H200):
+    // 80,000 29.66 dB against 29.35 at 15,000; 40,000 28.33 against 27.80; 400,000 31.07 against
+    // 31.02; lego 50,000 35.66 (one run) against 35.47 (benchmarks/RESULTS.md).
+    uint64_t densify_until = 5000;
 };
 
 // The Gaussians the scene may hold after densifying at `iteration`: start before the window,

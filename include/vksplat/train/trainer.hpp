@@ -71,9 +71,6 @@ struct TrainOptions {
     double opacity_regularization = 0;
     double scale_regularization = 0;
     double position_noise = 0;
-    // After each densification or relocation, the Gaussians in Morton order of their positions
-    // (train/spatial_order.hpp), so that what a tile blends sits close in memory.
-    bool spatial_order = false;
     // Written into every checkpoint; a checkpoint of another owner is refused on resume.
     CheckpointOwner checkpoint_owner;
 };
