@@ -208,6 +208,8 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
 }
 
 void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream) {
+    // A frame that ran out of tile entries walked cut lists: its time says nothing.
+    if (status() & kStepOverflowed) return;
     const std::string label = blend_backward_stage(recorded_);
     for (const auto& stage : stream.stage_times())
         if (stage.label == label) {

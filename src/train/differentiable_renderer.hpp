@@ -90,7 +90,8 @@ public:
     // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits. The blend
     // backward runs in blend_backward_choice().next()'s form.
     void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad);
-    // After the submission of a record_backward: its blend backward's time, for the choice of form.
+    // After the submission of a record_backward and record_readback: its blend backward's time, for
+    // the choice of form (none from a frame that overflowed its tile entries).
     void learn_timings(const gpu::CommandStream& stream);
     const BlendBackwardChoice& blend_backward_choice() const { return choice_; }
     // Copies the frame counters and the step status to the host-visible readback (after the
