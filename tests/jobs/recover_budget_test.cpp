@@ -107,6 +107,8 @@ TEST_F(RecoverBudget, RefusesBudgetsThatAreNotPositiveSecondsBeforeAnyStep) {
 
 // On lavapipe a step of this scene takes milliseconds, so a billion iterations would take weeks:
 // the budget, not the count, ends the run, which still finishes (not interrupted) and measures.
+// It runs until the deadline, whatever count the timed steps planned (that count sets only the
+// position rate's decay).
 TEST_F(RecoverBudget, ATimeBudgetEndsTheRefitInsteadOfItsIterationCount) {
     auto o = options;
     o.iterations = 1'000'000'000;
@@ -122,8 +124,8 @@ TEST_F(RecoverBudget, ATimeBudgetEndsTheRefitInsteadOfItsIterationCount) {
     EXPECT_FALSE(result.interrupted);
     EXPECT_TRUE(result.after.has_value());
     EXPECT_GE(result.iterations, 1u);
-    EXPECT_LE(result.iterations, result.planned_iterations);
     EXPECT_LT(result.planned_iterations, 1'000'000u);
+    EXPECT_GE(seconds, 2.0) << "the run ended before its deadline";
     EXPECT_LT(seconds, 30) << "a 2 s budget ran " << seconds << " s";
 }
 
@@ -139,10 +141,8 @@ TEST_F(RecoverBudget, TheRoundsShareOneBudget) {
                                                                cameras, photos, recover);
     const double seconds = seconds_since(start);
     ASSERT_EQ(result.rounds.size(), 3u);
-    for (const jobs::RecoverRound& round : result.rounds) {
-        EXPECT_GE(round.refit.iterations, 1u);
-        EXPECT_LE(round.refit.iterations, round.refit.planned_iterations);
-    }
+    for (const jobs::RecoverRound& round : result.rounds) EXPECT_GE(round.refit.iterations, 1u);
+    EXPECT_GE(seconds, 3.0) << "the rounds ended before the budget's deadline";
     EXPECT_LT(seconds, 30) << "a 3 s budget over 3 rounds ran " << seconds << " s";
 }
 
