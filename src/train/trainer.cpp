@@ -213,6 +213,8 @@ Trainer::Trainer(const gpu::Context& context, const std::filesystem::path& check
 
 Trainer::~Trainer() = default;
 
+bool deterministic_by_default(const gpu::Context& context) { return context.info().int64_atomics; }
+
 StepResult Trainer::step(const Camera& camera, const Photo& photo) { return impl_->step(camera, photo); }
 uint64_t Trainer::iteration() const { return impl_->iteration; }
 uint64_t Trainer::skipped_steps() const { return impl_->skipped; }

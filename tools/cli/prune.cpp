@@ -8,6 +8,7 @@
 #include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/formats.hpp"
+#include "vksplat/train/trainer.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
@@ -31,7 +32,7 @@ struct PruneArgs {
     std::optional<double> recover_seconds;
     std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
     std::string position_lr = "decay";
-    bool force = false, deterministic = false;
+    bool force = false, deterministic = false, fast_sums = false;
 };
 
 std::optional<std::filesystem::path> optional_path(const std::string& path) {
@@ -119,11 +120,13 @@ int run_prune(const PruneArgs& args) {
                             std::holds_alternative<prune::SizeBudget>(options.selector);
         recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
         if (args.position_lr == "final") recover.finetune.train.position_schedule = train::PositionSchedule::final_rate;
-        recover.finetune.train.deterministic = args.deterministic;
         options.recover = recover;
     }
 
     gpu::Context context(args.gpu.context_options());
+    if (options.recover)
+        options.recover->finetune.train.deterministic =
+            !args.fast_sums && (args.deterministic || train::deterministic_by_default(context));
     Renderer renderer(context);
     std::fprintf(stderr, "pruning %zu Gaussians by %s on %s\n", cloud.size(), args.method.c_str(),
                  context.info().name.c_str());
@@ -239,12 +242,17 @@ void register_prune(CLI::App& app, Action& action) {
                                             "its final value in each re-fit, or keep it at the final value")
                             ->check(CLI::IsMember({"final", "decay"}));
     auto* deterministic = command->add_flag("--deterministic", args->deterministic,
-                                            "with --recover: sum gradients in fixed point, the same bytes every run");
+                                            "with --recover: sum gradients in fixed point, the same bytes every run\n"
+                                            "(the default where the device has 64-bit atomics; with this flag,\n"
+                                            "refused where it has not)");
+    auto* fast_sums = command->add_flag("--fast-sums", args->fast_sums,
+                                        "with --recover: float atomics in any order, a little faster; runs differ")
+                          ->excludes(deterministic);
     command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);
-    command->callback([&action, args, recover, recover_seconds, rounds, position_lr, deterministic] {
-        for (const CLI::Option* option : {rounds, position_lr, deterministic})
+    command->callback([&action, args, recover, recover_seconds, rounds, position_lr, deterministic, fast_sums] {
+        for (const CLI::Option* option : {rounds, position_lr, deterministic, fast_sums})
             if (option->count() && !recover->count() && !recover_seconds->count())
                 throw CLI::RequiresError(option->get_name(), "--recover or --recover-seconds");
         action = [args] { return run_prune(*args); };

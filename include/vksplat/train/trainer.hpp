@@ -75,6 +75,13 @@ struct TrainOptions {
     CheckpointOwner checkpoint_owner;
 };
 
+// Whether the commands train, finetune and prune --recover sum gradients in fixed point
+// (TrainOptions::deterministic) when not told: wherever the device has 64-bit buffer atomics. Measured
+// on bonsai (H200, benchmarks/RESULTS.md) it costs 1.015x GPU time per step at 80,000 Gaussians and
+// 1.09x at 400,000 (1.00x and 1.07x wall time), under the 10% at which issue 31 asked for the same
+// run giving the same bytes to become the default; --fast-sums takes float atomics in any order.
+bool deterministic_by_default(const gpu::Context& context);
+
 // A photo as the loss reads it: RGBA8 per pixel, r in the low byte, row-major, top row first.
 // Alpha 0 masks a pixel out of the loss (it neither counts nor pulls); any other alpha counts.
 struct Photo {
