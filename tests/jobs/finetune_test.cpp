@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "io/io_test_helpers.hpp"
+#include "jobs/rendered_photos.hpp"
 #include "support/first_format_checkpoint.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
@@ -48,10 +49,7 @@ protected:
     Renderer renderer;
     GaussianCloud truth;
     std::vector<Camera> cameras = row_of_five_views();
-    jobs::PhotoSource photos = [this](const Camera& camera) {
-        const RenderOutput out = renderer.render(camera);
-        return io::ImageRGB{out.width, out.height, out.rgb};
-    };
+    jobs::PhotoSource photos = rendered_photos(renderer);
     fs::path input;
     jobs::FinetuneOptions options;
 };

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "io/io_test_helpers.hpp"
+#include "jobs/rendered_photos.hpp"
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "vksplat/jobs/finetune.hpp"
@@ -70,10 +71,7 @@ protected:
     Renderer renderer;
     GaussianCloud truth;
     std::vector<Camera> cameras = row_of_five_views();
-    jobs::PhotoSource photos = [this](const Camera& camera) {
-        const RenderOutput out = renderer.render(camera);
-        return io::ImageRGB{out.width, out.height, out.rgb};
-    };
+    jobs::PhotoSource photos = rendered_photos(renderer);
     jobs::FinetuneOptions options;
 };
 
