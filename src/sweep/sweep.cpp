@@ -26,6 +26,16 @@
 #include "vksplat/prune/selection.hpp"
 
 namespace vksplat::sweep {
+
+std::vector<prune::ScoreMethod> default_methods() {
+    std::vector<prune::ScoreMethod> methods;
+    for (const std::string& name : prune::score_method_names()) {
+        const prune::ScoreMethod method = prune::parse_score_method(name);
+        if (!prune::needs_fisher(method)) methods.push_back(method);
+    }
+    return methods;
+}
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -85,9 +95,7 @@ void check_outputs(const SweepOptions& options) {
 
 std::vector<prune::ScoreMethod> methods_of(const SweepOptions& options) {
     if (!options.methods.empty() || options.cluster) return options.methods;
-    std::vector<prune::ScoreMethod> all;
-    for (const std::string& name : prune::score_method_names()) all.push_back(prune::parse_score_method(name));
-    return all;
+    return default_methods();
 }
 
 Targets make_targets(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,

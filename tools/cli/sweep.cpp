@@ -48,13 +48,12 @@ int run_sweep(const SweepArgs& args) {
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     sweep::SweepOptions options;
-    // No --methods: every per-Gaussian method and cluster pruning.
-    std::vector<std::string> methods = args.methods;
-    if (methods.empty()) {
-        methods = prune::score_method_names();
-        methods.push_back(sweep::kClusterMethod);
+    // No --methods: the default per-Gaussian methods (sweep::default_methods) and cluster pruning.
+    if (args.methods.empty()) {
+        options.methods = sweep::default_methods();
+        options.cluster = true;
     }
-    for (const auto& name : methods) {
+    for (const auto& name : args.methods) {
         if (name == sweep::kClusterMethod)
             options.cluster = true;
         else

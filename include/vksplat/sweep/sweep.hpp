@@ -30,8 +30,13 @@
 
 namespace vksplat::sweep {
 
+// What a sweep scores when not told (SweepOptions::methods empty, and `vksplat sweep` without
+// --methods): every method but fisher, in the enum's order. Fisher's pass runs on the CPU (bonsai:
+// ~1.3 s per view on 2 cores, minutes over its training views), so it is swept only by name.
+std::vector<prune::ScoreMethod> default_methods();
+
 struct SweepOptions {
-    // Empty: every method, in the enum's order, unless `cluster` is set (then cluster pruning alone).
+    // Empty: default_methods(), unless `cluster` is set (then cluster pruning alone).
     std::vector<prune::ScoreMethod> methods;
     // Also sweep cluster pruning (after the methods above), with these options; its region views
     // are the sweep's training views unless cluster_options.views names others.
