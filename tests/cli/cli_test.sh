@@ -146,6 +146,15 @@ expect cluster-original-method 0 "percentile" -- "$vksplat" cluster score "$work
 expect cluster-original-prune 0 "wrote $work/original_clusters.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1 \
   -o "$work/original_clusters.ply"
+# --preset original is those flags by name: the same scores, the same bytes.
+expect cluster-preset-score 0 "percentile" -- "$vksplat" cluster score "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --preset original --force
+expect cluster-preset-prune 0 "wrote $work/original_preset.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --preset original -o "$work/original_preset.ply"
+cmp -s "$work/original_clusters.ply" "$work/original_preset.ply" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: --preset original differs from its flags"; }
+expect cluster-preset-and-its-option any-failure "excludes" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --work "$work/cw" --preset keep-subject --prune-ratio 0.5 -o "$work/x.ply"
 expect cluster-quality-budget 0 "quality budget 0.500 dB: kept" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --work "$work/cw" --max-psnr-drop 0.5 --test-views 0-2 -o "$work/budget_clusters.ply"
 expect cluster-budget-or-ratio any-failure "--max-psnr-drop" -- "$vksplat" cluster prune "$work/demo/demo.ply" \

@@ -27,6 +27,7 @@ struct ClusterArgs {
     std::string scene, cameras, work, out, import_dir, images, test_views;
     std::string subject = "auto", subject_masks, sheets;
     std::string ratio_of = "gaussians";
+    std::string preset;  // empty: the options as given
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
@@ -136,6 +137,7 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     auto& options = args.stage.options;
     options.selection.threshold = args.score_threshold;
     options.selection.ratio_of = cluster::parse_ratio_of(args.ratio_of);
+    if (!args.preset.empty()) jobs::apply_cluster_preset(jobs::parse_cluster_preset(args.preset), options);
     jobs::ClusterStageIo io{args.work, mode, log_line, {}};
     std::filesystem::create_directories(args.work);
 
@@ -258,6 +260,18 @@ CLI::App* add_stage(CLI::App& cluster, Action& action, const char* name, const c
                           "[K,H,W]) or .png (16-bit labels, 0 = none)")
             ->check(CLI::ExistingDirectory);
     if (stages & kPrune) add_prune(*command, *args);
+    if (stages & (kScore | kPrune)) {
+        auto* preset = command->add_option(
+            "--preset", args->preset,
+            "named score and selection settings: keep-subject (drop the room: lambda 1, 80% of the Gaussians, no "
+            "limit on the picture's loss), whole-picture (the defaults) or original (the issue's G*, 90% of the "
+            "clusters); excludes the options it sets");
+        preset->check(CLI::IsMember({"whole-picture", "keep-subject", "original"}));
+        for (const char* name : {"--alpha", "--beta", "--gamma", "--mvr-mean-frac-weight", "--kappa", "--lambda",
+                                 "--central-threshold", "--prune-ratio", "--ratio-of", "--max-contribution-loss",
+                                 "--score-threshold"})
+            if (CLI::Option* option = command->get_option_no_throw(name)) preset->excludes(option);
+    }
     if (stages & (kRegions | kProject) || stages & kPrune) add_gpu_options(*command, args->gpu);
     command->callback([&action, args, stages] { action = [args, stages] { return run_stages(*args, stages); }; });
     return command;
@@ -277,7 +291,8 @@ void register_cluster(CLI::App& app, Action& action) {
         "Defaults: contribution alone (kappa 1); drop the lowest clusters until half the Gaussians are gone\n"
         "or the dropped ones would paint more than --max-contribution-loss of the picture. The issue's method:\n"
         "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
-        "To keep the subject and drop the room: --lambda 1 --prune-ratio 0.8 --max-contribution-loss 1.\n"
+        "To keep the subject and drop the room: --preset keep-subject (--lambda 1 --prune-ratio 0.8\n"
+        "--max-contribution-loss 1); --preset original for the issue's method.\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,
