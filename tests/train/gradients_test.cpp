@@ -196,8 +196,9 @@ std::vector<float> random_weights(const Camera& camera, uint32_t seed) {
 }
 
 // Two backward passes give the same gradients: equal up to the order of float additions (and, for
-// fixed point, its 2^-40 steps), 1e-5 relative per parameter type.
-void expect_same_gradients(const train::RenderGradients& a, const train::RenderGradients& b) {
+// fixed point, its 2^-40 steps), `tolerance` relative per parameter type.
+void expect_same_gradients(const train::RenderGradients& a, const train::RenderGradients& b,
+                           double tolerance = 1e-5) {
     const auto relative = [](const std::vector<float>& x, const std::vector<float>& y) {
         double diff = 0, norm = 0;
         for (size_t i = 0; i < x.size(); ++i) {
@@ -206,11 +207,11 @@ void expect_same_gradients(const train::RenderGradients& a, const train::RenderG
         }
         return std::sqrt(diff / std::max(norm, 1e-30));
     };
-    EXPECT_LE(relative(a.gradient.positions, b.gradient.positions), 1e-5);
-    EXPECT_LE(relative(a.gradient.log_scales, b.gradient.log_scales), 1e-5);
-    EXPECT_LE(relative(a.gradient.rotations, b.gradient.rotations), 1e-5);
-    EXPECT_LE(relative(a.gradient.opacity_logits, b.gradient.opacity_logits), 1e-5);
-    EXPECT_LE(relative(a.gradient.sh, b.gradient.sh), 1e-5);
+    EXPECT_LE(relative(a.gradient.positions, b.gradient.positions), tolerance);
+    EXPECT_LE(relative(a.gradient.log_scales, b.gradient.log_scales), tolerance);
+    EXPECT_LE(relative(a.gradient.rotations, b.gradient.rotations), tolerance);
+    EXPECT_LE(relative(a.gradient.opacity_logits, b.gradient.opacity_logits), tolerance);
+    EXPECT_LE(relative(a.gradient.sh, b.gradient.sh), tolerance);
     double norm = 0;
     for (float g : b.gradient.positions) norm += double(g) * g;
     EXPECT_GT(norm, 0.0);  // not two empty gradients agreeing
@@ -266,19 +267,24 @@ TEST_F(Gradients, PerSplatAgreesWithPerPixel) {
         for (int x = 0; x < camera.width; ++x)
             if (x < 30 || (x / 3 + y / 3) % 2 == 0)  // a band and a fine checkerboard masked out
                 for (int c = 0; c < 3; ++c) weights[(size_t(y) * camera.width + x) * 3 + c] = 0.0f;
+    // The per-pixel reference sums in fixed point, so that it carries no float-order noise of its
+    // own; the per-splat sums are float and do. Their order alone moved the log-scale gradients of
+    // "mixed sizes" by up to 3.2e-5 relative on lavapipe (they cancel across pixels), so 1e-5 failed
+    // about one run in eight: the bound is 1e-4, and a wrong formula moves them by far more.
+    constexpr double kFloatOrder = 1e-4;
     for (const auto& c : cases) {
         SCOPED_TRACE(c.name);
         const auto per_pixel = train::render_gradients(context(), c.cloud, camera, {}, weights,
-                                                       train::GradientSums::device_default,
+                                                       train::GradientSums::fixed_point,
                                                        train::BlendBackward::per_pixel);
         expect_same_gradients(train::render_gradients(context(), c.cloud, camera, {}, weights,
                                                       train::GradientSums::device_default,
                                                       train::BlendBackward::per_splat),
-                              per_pixel);
+                              per_pixel, kFloatOrder);
         expect_same_gradients(train::render_gradients(context(), c.cloud, camera, {}, weights,
                                                       train::GradientSums::compare_and_swap,
                                                       train::BlendBackward::per_splat),
-                              per_pixel);
+                              per_pixel, kFloatOrder);
     }
 }
 
