@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <functional>
 #include <string>
+#include <utility>
 
 #include "vksplat/gpu/context.hpp"
 #include "vksplat/scene/scene.hpp"
@@ -25,6 +26,17 @@ struct GpuOptions {
     }
 };
 void add_gpu_options(CLI::App& command, GpuOptions& options);
+// How train, finetune and prune --recover sum gradients: in fixed point (the same bytes every run)
+// wherever the device can (train::deterministic_by_default), unless --fast-sums; --deterministic
+// insists, and is refused by name where the device cannot.
+struct GradientSumsArgs {
+    bool deterministic = false, fast_sums = false;
+    bool fixed_point(const gpu::Context& context) const;
+};
+// Registers --deterministic and --fast-sums (excluding each other), their help starting with
+// `condition` (e.g. "with --recover: "); returns both, for commands whose other options they need.
+std::pair<CLI::Option*, CLI::Option*> add_gradient_sums_flags(CLI::App& command, GradientSumsArgs& args,
+                                                              const std::string& condition = "");
 // Tracks the most depth-ordered chunks any frame needed (--memory-budget) and says so once.
 struct ChunkReport {
     uint32_t most = 1;

@@ -7,7 +7,6 @@
 #include "interrupt.hpp"
 #include "number_checks.hpp"
 #include "vksplat/error.hpp"
-#include "vksplat/train/trainer.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/jobs/finetune.hpp"
@@ -25,7 +24,8 @@ struct FinetuneArgs {
     uint64_t checkpoint_every = 1000, seed = 0;
     std::vector<float> background{0, 0, 0};
     std::string position_lr = "final";
-    bool resume = false, force = false, quiet = false, deterministic = false, fast_sums = false;
+    bool resume = false, force = false, quiet = false;
+    GradientSumsArgs sums;
 };
 
 void print_status(const train::LoopStatus& s, bool terminal) {
@@ -68,8 +68,7 @@ int run_finetune(const FinetuneArgs& args) {
     for (size_t v : options.test_views) test_cameras.push_back(cameras[v]);
 
     gpu::Context context(args.gpu.context_options());
-    options.train.deterministic =
-        !args.fast_sums && (args.deterministic || train::deterministic_by_default(context));
+    options.train.deterministic = args.sums.fixed_point(context);
     Renderer renderer(context);
     RenderSettings settings;
     settings.background = options.train.background;
@@ -160,13 +159,7 @@ void register_finetune(CLI::App& app, Action& action) {
     command->add_option("--checkpoint-every", args->checkpoint_every, "iterations between checkpoints")
         ->check(count_in(1));
     command->add_flag("--resume", args->resume, "continue from the checkpoint");
-    auto* deterministic = command->add_flag(
-        "--deterministic", args->deterministic,
-        "sum gradients in fixed point so that the same inputs give the same bytes every run (the default where "
-        "the device has 64-bit atomics; with this flag, refused where it has not)");
-    command->add_flag("--fast-sums", args->fast_sums,
-                      "sum gradients with float atomics in any order: a little faster, but two runs differ")
-        ->excludes(deterministic);
+    add_gradient_sums_flags(*command, args->sums);
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_option("-o,--out", args->out, "re-fitted scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite an existing output");

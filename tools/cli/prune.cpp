@@ -8,7 +8,6 @@
 #include "number_checks.hpp"
 #include "progress.hpp"
 #include "vksplat/io/formats.hpp"
-#include "vksplat/train/trainer.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
@@ -32,7 +31,8 @@ struct PruneArgs {
     std::optional<double> recover_seconds;
     std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
     std::string position_lr = "decay";
-    bool force = false, deterministic = false, fast_sums = false;
+    bool force = false;
+    GradientSumsArgs sums;
 };
 
 std::optional<std::filesystem::path> optional_path(const std::string& path) {
@@ -125,8 +125,7 @@ int run_prune(const PruneArgs& args) {
 
     gpu::Context context(args.gpu.context_options());
     if (options.recover)
-        options.recover->finetune.train.deterministic =
-            !args.fast_sums && (args.deterministic || train::deterministic_by_default(context));
+        options.recover->finetune.train.deterministic = args.sums.fixed_point(context);
     Renderer renderer(context);
     std::fprintf(stderr, "pruning %zu Gaussians by %s on %s\n", cloud.size(), args.method.c_str(),
                  context.info().name.c_str());
@@ -241,13 +240,9 @@ void register_prune(CLI::App& app, Action& action) {
                                             "with --recover: decay (default) the position rate from its initial to\n"
                                             "its final value in each re-fit, or keep it at the final value")
                             ->check(CLI::IsMember({"final", "decay"}));
-    auto* deterministic = command->add_flag("--deterministic", args->deterministic,
-                                            "with --recover: sum gradients in fixed point, the same bytes every run\n"
-                                            "(the default where the device has 64-bit atomics; with this flag,\n"
-                                            "refused where it has not)");
-    auto* fast_sums = command->add_flag("--fast-sums", args->fast_sums,
-                                        "with --recover: float atomics in any order, a little faster; runs differ")
-                          ->excludes(deterministic);
+    const auto sums = add_gradient_sums_flags(*command, args->sums, "with --recover: ");
+    CLI::Option* deterministic = sums.first;
+    CLI::Option* fast_sums = sums.second;
     command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);

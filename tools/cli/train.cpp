@@ -8,7 +8,6 @@
 #include "interrupt.hpp"
 #include "number_checks.hpp"
 #include "vksplat/error.hpp"
-#include "vksplat/train/trainer.hpp"
 #include "vksplat/jobs/train_scene.hpp"
 
 namespace vksplat::cli {
@@ -25,8 +24,8 @@ struct TrainArgs {
     double budget_peak = train::BudgetSchedule{}.peak;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
-    bool white_background = false, resume = false, force = false, quiet = false, deterministic = false, fast_sums = false,
-         profile = false;
+    bool white_background = false, resume = false, force = false, quiet = false, profile = false;
+    GradientSumsArgs sums;
 };
 
 int run_train(const TrainArgs& args) {
@@ -55,7 +54,7 @@ int run_train(const TrainArgs& args) {
     for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
     for (const auto& notice : data.notices) std::fprintf(stderr, "%s\n", notice.c_str());
     gpu::Context context(args.gpu.context_options());
-    options.deterministic = !args.fast_sums && (args.deterministic || train::deterministic_by_default(context));
+    options.deterministic = args.sums.fixed_point(context);
     Renderer renderer(context);
     RenderSettings settings;
     settings.background = options.background;
@@ -160,14 +159,7 @@ void register_train(CLI::App& app, Action& action) {
         ->check(count_in(1));
     command->add_option("--seed", args->seed, "seed of the view order and random starts")->check(count_in(0));
     command->add_flag("--resume", args->resume, "continue from OUT_DIR/checkpoint");
-    auto* deterministic = command->add_flag(
-        "--deterministic", args->deterministic,
-        "sum gradients in fixed point so that the same data and options give the same bytes every run (the default "
-        "where the device has 64-bit atomics; with this flag, refused where it has not)");
-    command->add_flag("--fast-sums", args->fast_sums,
-                      "sum gradients with float atomics in any order: up to 9% less GPU time per step, but two runs "
-                      "differ")
-        ->excludes(deterministic);
+    add_gradient_sums_flags(*command, args->sums);
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_flag("--profile", args->profile,
                       "print each pass's median GPU time per step (Vulkan timestamps; metrics.json has them always)");
