@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <stdexcept>
 
@@ -16,6 +17,12 @@ size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& b
     const double p = span > 0 ? std::clamp((double(iteration) - from) / span, 0.0, 1.0) : 1.0;
     const double grown = 1.0 - std::pow(1.0 - p, budget.growth_exponent);
     return budget.start + size_t(std::llround(double(peak - budget.start) * grown));
+}
+
+size_t settle_target(size_t count, size_t budget, int rounds_left) {
+    if (count <= budget || rounds_left <= 1) return std::min(count, budget);
+    const double share = double(rounds_left - 1) / double(rounds_left);
+    return std::max(budget, size_t(std::llround(double(budget) * std::pow(double(count) / double(budget), share))));
 }
 
 std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, size_t count) {
@@ -41,6 +48,8 @@ BudgetStrategy::BudgetStrategy(const ReferenceSchedule& reference, const BudgetS
         throw std::invalid_argument("BudgetStrategy: growth exponent must be > 0 and reach in (0, 1]");
     if (!(budget_.prune_ratio >= 0 && budget_.prune_ratio < 1))
         throw std::invalid_argument("BudgetStrategy: prune ratio must lie in [0, 1)");
+    if (budget_.settle_rounds < 1 || (budget_.settle_rounds > 1 && budget_.settle_spacing == 0))
+        throw std::invalid_argument("BudgetStrategy: at least one settling round, rounds apart");
     if (!(budget_.peak >= 1))
         throw std::invalid_argument("BudgetStrategy: the peak must be at least the budget");
     if ((budget_.prune_ratio > 0 || budget_.peak > 1) && !importance_)
@@ -59,6 +68,9 @@ void BudgetStrategy::prune_to(Trainer& trainer, size_t count) {
 
 void BudgetStrategy::before_step(Trainer& trainer, uint64_t iteration) {
     trainer.set_sh_degree(scheduled_step(reference_, iteration).sh_degree);
+    // Set on every step after the settling, not once, so that a run resumed from a checkpoint has it.
+    if (budget_.restart_decay_steps > 0 && iteration > budget_.settle_at)
+        trainer.set_position_decay(budget_.settle_at, int(std::min<uint64_t>(budget_.restart_decay_steps, std::numeric_limits<int>::max())));
 }
 
 void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
@@ -77,7 +89,12 @@ void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
         trainer.densify(rules);
     }
     if (step.reset_opacity) trainer.reset_opacity(reference_.opacity_reset_value);
-    if (iteration == budget_.settle_at && trainer.size() > budget_.budget) prune_to(trainer, budget_.budget);
+    const uint64_t spacing = std::max<uint64_t>(budget_.settle_spacing, 1);
+    if (iteration >= budget_.settle_at && (iteration - budget_.settle_at) % spacing == 0) {
+        const uint64_t round = (iteration - budget_.settle_at) / spacing;
+        if (round < uint64_t(budget_.settle_rounds) && trainer.size() > budget_.budget)
+            prune_to(trainer, settle_target(trainer.size(), budget_.budget, budget_.settle_rounds - int(round)));
+    }
 }
 
 }  // namespace vksplat::train

@@ -67,6 +67,10 @@ struct Trainer::Impl {
     uint32_t pixel_capacity = 0;
     uint64_t iteration = 0, skipped = 0;
     int sh_degree = 3;
+    struct PositionDecay {
+        uint64_t from = 0;
+        int steps = 0;
+    } position_decay;
 
     Impl(const gpu::Context& c, const TrainOptions& o)
         : context(c),
@@ -77,7 +81,8 @@ struct Trainer::Impl {
           noise(c),
           densify(c),
           stream(c),
-          sh_degree(o.sh_degree) {}
+          sh_degree(o.sh_degree),
+          position_decay{0, o.rates.position_decay_steps} {}
 
     void ensure_pixels(uint32_t pixels) {
         if (pixels <= pixel_capacity) return;
@@ -94,7 +99,8 @@ struct Trainer::Impl {
         const auto& r = options.rates;
         if (options.position_schedule == PositionSchedule::final_rate) return r.position_final * options.scene_extent;
         // The reference's get_expon_lr_func (without its delay, which the reference leaves off).
-        const double t = std::clamp(double(iteration) / std::max(r.position_decay_steps, 1), 0.0, 1.0);
+        const double since = double(iteration) - double(std::min(iteration, position_decay.from));
+        const double t = std::clamp(since / std::max(position_decay.steps, 1), 0.0, 1.0);
         return std::exp(std::log(r.position_initial) * (1 - t) + std::log(r.position_final) * t) * options.scene_extent;
     }
 
@@ -221,6 +227,7 @@ uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
 double Trainer::position_learning_rate() const { return impl_->position_rate(); }
 BlendBackward Trainer::blend_backward() const { return impl_->renderer.blend_backward_choice().chosen(); }
 void Trainer::set_sh_degree(int degree) { impl_->sh_degree = std::clamp(degree, 0, 3); }
+void Trainer::set_position_decay(uint64_t from_iteration, int steps) { impl_->position_decay = {from_iteration, steps}; }
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;

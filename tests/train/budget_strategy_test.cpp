@@ -50,6 +50,17 @@ TEST(GrowthTarget, RisesFromTheStartToTheBudgetOverTheWindow) {
     EXPECT_EQ(train::growth_target(reference, twice, 15000), 22000u);
 }
 
+TEST(SettleTarget, StepsGeometricallyToTheBudget) {
+    // 160,000 to 80,000 in three rounds: x 2^(-1/3) each time.
+    EXPECT_EQ(train::settle_target(160000, 80000, 3), 126992u);
+    EXPECT_EQ(train::settle_target(126992, 80000, 2), 100794u);
+    EXPECT_EQ(train::settle_target(100794, 80000, 1), 80000u);
+    EXPECT_EQ(train::settle_target(160000, 80000, 1), 80000u);
+    // Within the budget nothing goes.
+    EXPECT_EQ(train::settle_target(70000, 80000, 3), 70000u);
+    EXPECT_EQ(train::settle_target(80000, 80000, 2), 80000u);
+}
+
 TEST(KeepMostImportant, DropsTheLowestWithTiesByIndexAndNaNFirst) {
     const std::vector<float> importance = {0.5f, 0.1f, NAN, 0.1f, 0.9f, 0.3f};
     EXPECT_EQ(train::keep_most_important(importance, 3), (std::vector<uint8_t>{1, 0, 0, 0, 1, 1}));
@@ -135,6 +146,61 @@ TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
     EXPECT_GT(counts.at(90), 90u);
     EXPECT_EQ(counts.at(100), 90u);
     EXPECT_EQ(trainer.size(), 90u);
+}
+
+// Settling in rounds: each round re-scores and keeps its geometric share; the last reaches the
+// budget and nothing is scored after it.
+TEST_F(BudgetTraining, SettlesInRoundsWhenAsked) {
+    train::ReferenceSchedule reference;
+    reference.sh_degree = 0;
+    reference.densify_from = 10;
+    reference.densify_until = 60;
+    reference.densify_interval = 10;
+    reference.opacity_reset_interval = 1000;
+    reference.densify.grad_threshold = 0;
+    auto budget = budget_of(20, 40, 1.0);
+    budget.min_gradient = 0;
+    budget.peak = 2.0;
+    budget.settle_at = 60;
+    budget.settle_rounds = 2;
+    budget.settle_spacing = 15;
+    budget.restart_decay_steps = 40;
+    std::vector<uint64_t> scored_at;
+    std::vector<size_t> scored_sizes;
+    std::vector<uint8_t> every_third(60, 0);
+    for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
+    train::Trainer trainer(context(), truth.subset(every_third), {});
+    train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
+        scored_at.push_back(trainer.iteration());
+        scored_sizes.push_back(cloud.size());
+        std::vector<float> importance(cloud.size());
+        for (size_t i = 0; i < cloud.size(); ++i) importance[i] = cloud.opacity_logits[i];
+        return importance;
+    });
+    train::LoopOptions options;
+    options.iterations = 100;
+    std::map<uint64_t, size_t> counts;
+    options.snapshot_every = 5;
+    std::map<uint64_t, double> rates;
+    options.snapshot = [&](const train::Trainer& t, uint64_t iteration) {
+        counts[iteration] = t.size();
+        rates[iteration] = t.position_learning_rate();
+    };
+    train::run_training_loop(trainer, strategy, cameras, views, photos, options);
+    ASSERT_EQ(scored_at, (std::vector<uint64_t>{60, 75}));
+    // The position rate decays as usual until the settling, then afresh over 40 steps: half-way
+    // (log-linear) at 80, the final rate from 100 on.
+    const train::LearningRates r;
+    EXPECT_NEAR(rates.at(50), r.position_initial * std::pow(r.position_final / r.position_initial, 50.0 / 30000), 1e-12);
+    EXPECT_NEAR(rates.at(80), std::sqrt(r.position_initial * r.position_final), 1e-12);
+    EXPECT_NEAR(rates.at(100), r.position_final, 1e-12);
+    EXPECT_GT(scored_sizes[0], 40u);
+    EXPECT_EQ(counts.at(60), train::settle_target(scored_sizes[0], 40, 2));
+    EXPECT_GT(counts.at(60), 40u);
+    EXPECT_EQ(counts.at(70), counts.at(60));
+    EXPECT_EQ(counts.at(75), 40u);
+    EXPECT_EQ(trainer.size(), 40u);
+    EXPECT_EQ(strategy.events().prune_events, 2u);
 }
 
 }  // namespace

@@ -46,6 +46,15 @@ struct BudgetSchedule {
     // The price: the peak's memory and time until settle_at.
     double peak = 2.0;
     uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
+    // The settling in rounds, settle_spacing steps apart from settle_at on, each re-scoring the
+    // scene and keeping an equal share (geometric) of the way to the budget: the re-fits of issue 30
+    // lost less when pruned in three rounds than in one.
+    int settle_rounds = 1;
+    uint64_t settle_spacing = 1000;
+    // > 0: from settle_at on, the position rate decays afresh from its initial rate over this many
+    // steps (Trainer::set_position_decay), as a re-fit of a pruned scene does, so that what the
+    // settling keeps can move into the gaps it leaves; 0 keeps the reference's one decay.
+    uint64_t restart_decay_steps = 0;
     // Where vksplat::jobs ends this recipe's densification window (the reference's ends at 15,000):
     // settling earlier leaves more steps to re-fit what is kept. Bonsai (means of 3, H100/H200):
     // 80,000 29.66 dB against 29.35 at 15,000; 40,000 28.33 against 27.80; 400,000 31.07 against
@@ -56,6 +65,11 @@ struct BudgetSchedule {
 // The Gaussians the scene may hold after densifying at `iteration`: start before the window,
 // peak x budget once reached (budget below start: the budget throughout).
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration);
+
+// The count a settling round keeps of `count` Gaussians with `rounds_left` rounds to go (this one
+// included): budget x (count / budget)^((rounds_left - 1) / rounds_left), the budget itself in the
+// last round and whenever count is within it.
+size_t settle_target(size_t count, size_t budget, int rounds_left);
 
 // Per Gaussian of a scene, how much it is worth keeping (higher: more).
 using Importance = std::function<std::vector<float>(const GaussianCloud&)>;

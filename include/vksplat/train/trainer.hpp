@@ -178,6 +178,11 @@ public:
     BlendBackward blend_backward() const;
     // SH bands evaluated from the next step on (the trainer raises it as training goes).
     void set_sh_degree(int degree);
+    // The position rate's decay (PositionSchedule::decay) from the initial to the final rate runs
+    // over `steps` steps from `from_iteration` on (before it, the initial rate); by default from 0
+    // over LearningRates::position_decay_steps. A strategy that prunes deep into training restarts
+    // it so that what is kept can move into the gaps (the re-fit's schedule).
+    void set_position_decay(uint64_t from_iteration, int steps);
     // Clones, splits and prunes by the gradients gathered since the last call (see DensifyRules),
     // carrying Adam's moments over (zero for new Gaussians), then starts gathering afresh.
     DensifyReport densify(const DensifyRules& rules);
