@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
     app.add_option("--device", device);
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
+    std::string method = "blend";
+    app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
@@ -152,7 +154,10 @@ int main(int argc, char** argv) {
         } else {
             const auto train = jobs::default_train_views(cameras.size(), test);
             const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings);
-            const prune::Ranking ranking(prune::score(cloud, totals, prune::ScoreMethod::blend),
+            const prune::ScoreMethod score_method = prune::parse_score_method(method);
+            if (score_method == prune::ScoreMethod::fisher)
+                throw InputError("--method fisher", "is scored on the CPU; refit_bench ranks from the GPU's totals");
+            const prune::Ranking ranking(prune::score(cloud, totals, score_method),
                                          prune::lossless_mask(totals));
             const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
             const double unpruned = quality(cloud).mean_psnr;
@@ -161,6 +166,7 @@ int main(int argc, char** argv) {
             recover.iterations = iterations;
             recover.seconds = seconds;
             recover.rounds = rounds;
+            recover.method = score_method;
             recover.finetune = options;
             if (seconds)
                 std::printf("a budget of %g s over %d rounds\n", *seconds, rounds);
