@@ -125,13 +125,22 @@ void CommandStream::mark(const std::string& label) {
 }
 
 void CommandStream::submit_and_wait() {
+    submit();
+    wait();
+}
+
+void CommandStream::submit() {
     const auto& d = context_.impl();
     VKSPLAT_VK(d.vk.vkEndCommandBuffer(command_buffer_));
-    VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    submit.commandBufferCount = 1;
-    submit.pCommandBuffers = &command_buffer_;
+    VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &command_buffer_;
     VKSPLAT_VK(d.vk.vkResetFences(d.device, 1, &fence_));
-    VKSPLAT_VK(d.vk.vkQueueSubmit(d.queue, 1, &submit, fence_));
+    VKSPLAT_VK(d.vk.vkQueueSubmit(d.queue, 1, &info, fence_));
+}
+
+void CommandStream::wait() {
+    const auto& d = context_.impl();
     VKSPLAT_VK(d.vk.vkWaitForFences(d.device, 1, &fence_, VK_TRUE, UINT64_MAX));
 
     times_.clear();

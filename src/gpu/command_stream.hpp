@@ -1,5 +1,6 @@
 #pragma once
-// CommandStream: records compute work into one command buffer, submits it and waits.
+// CommandStream: records compute work into one command buffer, submits it and waits (at once, or
+// later: the host can prepare other work while it runs).
 // It also owns a timestamp query pool, so every recorded stage can be timed on the GPU.
 // Built on an application's command buffer instead, it only records into it (no begin, submit,
 // or timestamps): the application owns that buffer's life and its submission.
@@ -63,6 +64,9 @@ public:
     // Marks the end of a stage: the time from the previous mark (or begin()) is reported under label.
     void mark(const std::string& label);
     void submit_and_wait();
+    // submit_and_wait() in two halves; a stream is not begun again before its wait().
+    void submit();
+    void wait();
     // Stage times of the last submission (empty if the queue has no timestamps).
     std::vector<StageTime> stage_times() const;
 
