@@ -210,12 +210,14 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
 void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream) {
     // A frame that ran out of tile entries walked cut lists: its time says nothing.
     if (status() & kStepOverflowed) return;
-    const std::string label = blend_backward_stage(recorded_);
+    // The stage's label says which form ran: the Trainer records the next step, perhaps in the
+    // other form, before it learns from this one.
     for (const auto& stage : stream.stage_times())
-        if (stage.label == label) {
-            choice_.timed(recorded_, stage.milliseconds);
-            return;
-        }
+        for (const BlendBackward form : {BlendBackward::per_pixel, BlendBackward::per_splat})
+            if (stage.label == blend_backward_stage(form)) {
+                choice_.timed(form, stage.milliseconds);
+                return;
+            }
     choice_.untimed();
 }
 
