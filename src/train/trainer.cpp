@@ -1,6 +1,7 @@
 #include "vksplat/train/trainer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -53,6 +54,18 @@ Photo Photo::from_image(const io::ImageRGB& image, const std::vector<uint8_t>& m
 }
 
 struct Trainer::Impl {
+    // What a step needs until it has finished: its photo, its commands (an overflowed step runs
+    // again) and what its recording read, as it was when the step was submitted.
+    struct Slot {
+        explicit Slot(const gpu::Context& context) : stream(context) {}
+        gpu::CommandStream stream;
+        gpu::Buffer photo_upload;
+        Camera camera;
+        uint64_t step = 0;  // 0-based: Adam's bias correction and the noise's seed count it
+        int sh_degree = 0;
+        double position_rate = 0;
+    };
+
     const gpu::Context& context;
     TrainOptions options;
     SanitizeReport report;
@@ -62,10 +75,14 @@ struct Trainer::Impl {
     gpu::Kernel<shader::train::AdamStepKernel> adam;
     gpu::Kernel<shader::train::PositionNoiseKernel> noise;
     DensifyPasses densify;
-    gpu::CommandStream stream;
-    gpu::Buffer photo_upload, photo, pixel_grad;
+    // Step N is recorded into slots[N % 2] while step N - 1 runs from the other; one step is on the
+    // GPU at a time, so the device buffers below and the renderer's are single.
+    std::array<Slot, 2> slots;
+    Slot* in_flight = nullptr;
+    std::vector<StepResult> finished;  // results not yet taken (take_results)
+    gpu::Buffer photo, pixel_grad;
     uint32_t pixel_capacity = 0;
-    uint64_t iteration = 0, skipped = 0;
+    uint64_t iteration = 0, skipped = 0;  // iteration: steps submitted
     int sh_degree = 3;
     struct PositionDecay {
         uint64_t from = 0;
@@ -80,14 +97,16 @@ struct Trainer::Impl {
           adam(c),
           noise(c),
           densify(c),
-          stream(c),
+          slots{Slot(c), Slot(c)},
           sh_degree(o.sh_degree),
           position_decay{0, o.rates.position_decay_steps} {}
 
     void ensure_pixels(uint32_t pixels) {
         if (pixels <= pixel_capacity) return;
-        photo_upload = gpu::Buffer();
-        photo_upload = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
+        for (Slot& slot : slots) {
+            slot.photo_upload = gpu::Buffer();
+            slot.photo_upload = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
+        }
         photo = gpu::Buffer();
         photo = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::device, "photo");
         pixel_grad = gpu::Buffer();
@@ -104,9 +123,9 @@ struct Trainer::Impl {
         return std::exp(std::log(r.position_initial) * (1 - t) + std::log(r.position_final) * t) * options.scene_extent;
     }
 
-    shader::train::AdamStepPush adam_push() const {
+    shader::train::AdamStepPush adam_push(const Slot& slot) const {
         const auto& r = options.rates;
-        const double t = double(iteration + 1);
+        const double t = double(slot.step + 1);
         return {.params = scene.params.address(),
                 .grads = scene.grads.address(),
                 .first_moment = scene.first_moment.address(),
@@ -114,7 +133,7 @@ struct Trainer::Impl {
                 .status = renderer.status_buffer().address(),
                 .count = scene.layout.count,
                 .sh_floats = scene.layout.sh_coefficients * 3,
-                .lr_position = static_cast<float>(position_rate()),
+                .lr_position = static_cast<float>(slot.position_rate),
                 .lr_scale = static_cast<float>(r.scale),
                 .lr_rotation = static_cast<float>(r.rotation),
                 .lr_opacity = static_cast<float>(r.opacity),
@@ -130,11 +149,27 @@ struct Trainer::Impl {
                 .scale_regularization = static_cast<float>(options.scale_regularization / (3.0 * scene.layout.count))};
     }
 
-    StepResult step(const Camera& camera, const Photo& target);
+    ~Impl();
+    void submit(const Camera& camera, const Photo& target);
+    void record(Slot& slot);
+    bool finish_in_flight();
+    void finish() {
+        if (in_flight) finish_in_flight();
+    }
+    StepResult result_of(const Slot& slot, uint32_t attempts);
     void load_checkpoint(const std::filesystem::path& path);
 };
 
-StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
+Trainer::Impl::~Impl() {
+    // The step's buffers must outlive its commands; what it did no longer matters.
+    if (!in_flight) return;
+    try {
+        in_flight->stream.wait();
+    } catch (...) {  // the device is lost: nothing runs any more
+    }
+}
+
+void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
     camera.validate();
     if (target.width != camera.width || target.height != camera.height ||
         target.rgba.size() != size_t(target.width) * target.height)
@@ -142,53 +177,89 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
                          "is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                              " but the camera is " + std::to_string(camera.width) + "x" +
                              std::to_string(camera.height));
+    // A step in flight is of the same scene (whatever changes it finishes the step first); of the
+    // same image size too, no buffer below grows, and the loss's sums keep their layout.
+    if (in_flight && (in_flight->camera.width != camera.width || in_flight->camera.height != camera.height))
+        finish_in_flight();
     const auto [pixels, tiles] = render::image_extent(camera);
-    const uint32_t n = scene.layout.count;
-    renderer.ensure(n, pixels, tiles);
+    renderer.ensure(scene.layout.count, pixels, tiles);
     ensure_pixels(pixels);
-    std::memcpy(photo_upload.mapped(), target.rgba.data(), uint64_t(pixels) * 4);
+    Slot& slot = slots[iteration % 2];
+    std::memcpy(slot.photo_upload.mapped(), target.rgba.data(), uint64_t(pixels) * 4);
+    slot.camera = camera;
+    slot.step = iteration;
+    slot.sh_degree = sh_degree;
+    slot.position_rate = position_rate();
+    record(slot);
+    // The recording used the tile entries of the moment: the step before, overflowing, grew them.
+    if (in_flight && finish_in_flight()) record(slot);
+    slot.stream.submit();
+    in_flight = &slot;
+    ++iteration;
+}
 
+void Trainer::Impl::record(Slot& slot) {
+    const Camera& camera = slot.camera;
+    const uint32_t n = scene.layout.count;
+    const uint32_t pixels = render::image_extent(camera).pixels;
     RenderSettings settings;
     settings.background = options.background;
-    settings.max_sh_degree = sh_degree;
-    StepResult result;
-    for (result.attempts = 1;; ++result.attempts) {
-        const auto params =
-            render::make_camera_params(camera, settings, n, scene.sh_degree, false, renderer.entry_capacity());
-        stream.begin();
-        stream.copy(photo_upload, photo, uint64_t(pixels) * 4);
-        renderer.record_forward(stream, scene, params);
-        loss.record(stream, {renderer.color_alpha().address(), photo.address(), pixel_grad.address(),
-                             uint32_t(camera.width), uint32_t(camera.height), float(options.ssim_weight)});
+    settings.max_sh_degree = slot.sh_degree;
+    const auto params =
+        render::make_camera_params(camera, settings, n, scene.sh_degree, false, renderer.entry_capacity());
+    gpu::CommandStream& stream = slot.stream;
+    stream.begin();
+    stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4);
+    renderer.record_forward(stream, scene, params);
+    loss.record(stream, {renderer.color_alpha().address(), photo.address(), pixel_grad.address(),
+                         uint32_t(camera.width), uint32_t(camera.height), float(options.ssim_weight)});
+    stream.barrier();
+    stream.mark("loss");
+    renderer.record_backward(stream, scene, pixel_grad.address());
+    // One thread per float of the parameter array.
+    stream.dispatch(adam, adam_push(slot),
+                    gpu::groups_for(static_cast<uint32_t>(std::min<uint64_t>(scene.layout.total(), 0xffffffffu))));
+    stream.barrier();
+    stream.mark("adam");
+    if (options.position_noise > 0) {
+        stream.dispatch(noise,
+                        {.params = scene.params.address(),
+                         .status = renderer.status_buffer().address(),
+                         .count = n,
+                         .seed = static_cast<uint32_t>(slot.step * 0x9e3779b9ull),
+                         .scale = static_cast<float>(options.position_noise * slot.position_rate)},
+                        gpu::groups_for(n));
         stream.barrier();
-        stream.mark("loss");
-        renderer.record_backward(stream, scene, pixel_grad.address());
-        // One thread per float of the parameter array.
-        stream.dispatch(adam, adam_push(),
-                        gpu::groups_for(static_cast<uint32_t>(std::min<uint64_t>(scene.layout.total(), 0xffffffffu))));
-        stream.barrier();
-        stream.mark("adam");
-        if (options.position_noise > 0) {
-            stream.dispatch(noise,
-                            {.params = scene.params.address(),
-                             .status = renderer.status_buffer().address(),
-                             .count = n,
-                             .seed = static_cast<uint32_t>(iteration * 0x9e3779b9ull),
-                             .scale = static_cast<float>(options.position_noise * position_rate())},
-                            gpu::groups_for(n));
-            stream.barrier();
-            stream.mark("position noise");
-        }
-        renderer.record_readback(stream);
-        stream.barrier_before_host_read();
-        stream.submit_and_wait();
-        renderer.learn_timings(stream);
+        stream.mark("position noise");
+    }
+    renderer.record_readback(stream);
+    stream.barrier_before_host_read();
+}
+
+// Waits for the step in flight and keeps its result; a step whose frame overflowed its tile
+// entries (Adam and the passes after it did nothing) runs again, synchronously, with grown ones.
+// Returns whether they grew.
+bool Trainer::Impl::finish_in_flight() {
+    Slot& slot = *in_flight;
+    in_flight = nullptr;
+    slot.stream.wait();
+    uint32_t attempts = 1;
+    for (;; ++attempts) {
+        renderer.learn_timings(slot.stream);
         const uint32_t needed = renderer.entries_needed();  // checked even when the frame fits
         if ((renderer.status() & kStepOverflowed) == 0) break;
-        render::check_frame_attempts(result.attempts, "view '" + camera.name + "'");
+        render::check_frame_attempts(attempts, "view '" + slot.camera.name + "'");
         renderer.grow_entries(needed);
+        record(slot);
+        slot.stream.submit_and_wait();
     }
-    ++iteration;
+    finished.push_back(result_of(slot, attempts));
+    return attempts > 1;
+}
+
+StepResult Trainer::Impl::result_of(const Slot& slot, uint32_t attempts) {
+    StepResult result;
+    result.attempts = attempts;
     result.applied = (renderer.status() & kStepNonfinite) == 0;
     if (!result.applied) ++skipped;
     const LossValue value = loss.last();
@@ -198,7 +269,7 @@ StepResult Trainer::Impl::step(const Camera& camera, const Photo& target) {
     result.psnr = psnr_from_mse(value.mse);
     result.visible = renderer.visible();
     result.tile_entries = renderer.entries_needed();
-    for (const auto& t : stream.stage_times()) {
+    for (const auto& t : slot.stream.stage_times()) {
         result.stages.push_back({t.label, t.milliseconds});
         result.gpu_milliseconds += t.milliseconds;
     }
@@ -221,7 +292,23 @@ Trainer::~Trainer() = default;
 
 bool deterministic_by_default(const gpu::Context& context) { return context.info().int64_atomics; }
 
-StepResult Trainer::step(const Camera& camera, const Photo& photo) { return impl_->step(camera, photo); }
+StepResult Trainer::step(const Camera& camera, const Photo& photo) {
+    submit(camera, photo);
+    impl_->finish();
+    StepResult result = std::move(impl_->finished.back());
+    impl_->finished.pop_back();
+    return result;
+}
+
+void Trainer::submit(const Camera& camera, const Photo& photo) { impl_->submit(camera, photo); }
+void Trainer::finish() { impl_->finish(); }
+
+std::vector<StepResult> Trainer::take_results() {
+    std::vector<StepResult> results;
+    results.swap(impl_->finished);
+    return results;
+}
+
 uint64_t Trainer::iteration() const { return impl_->iteration; }
 uint64_t Trainer::skipped_steps() const { return impl_->skipped; }
 double Trainer::position_learning_rate() const { return impl_->position_rate(); }
@@ -231,6 +318,7 @@ void Trainer::set_position_decay(uint64_t from_iteration, int steps) { impl_->po
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
+    d.finish();
     const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
     TrainableScene next = d.densify.apply(d.scene, plan);
     d.scene = std::move(next);
@@ -239,6 +327,7 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
 
 RelocationReport Trainer::relocate(const RelocationRules& rules) {
     auto& d = *impl_;
+    d.finish();
     const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
     if (relocation.report.relocated + relocation.report.added > 0)
         d.scene = d.densify.apply(d.scene, relocation.plan);
@@ -248,6 +337,7 @@ RelocationReport Trainer::relocate(const RelocationRules& rules) {
 size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     auto& d = *impl_;
     if (keep.size() != d.scene.layout.count) throw std::invalid_argument("Trainer::remove: one flag per Gaussian");
+    d.finish();
     DensifyPlan plan;
     for (uint32_t i = 0; i < keep.size(); ++i)
         if (keep[i]) plan.sources.push_back(i);
@@ -266,11 +356,17 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
 }
 
 // The densification sums carry on: the reference resets opacity without touching them.
-void Trainer::reset_opacity(double max_opacity) { impl_->densify.reset_opacity(impl_->scene, max_opacity); }
+void Trainer::reset_opacity(double max_opacity) {
+    impl_->finish();
+    impl_->densify.reset_opacity(impl_->scene, max_opacity);
+}
 
 const SanitizeReport& Trainer::sanitize_report() const { return impl_->report; }
 size_t Trainer::size() const { return impl_->scene.layout.count; }
-GaussianCloud Trainer::cloud() const { return impl_->scene.download(impl_->context); }
+GaussianCloud Trainer::cloud() const {
+    impl_->finish();
+    return impl_->scene.download(impl_->context);
+}
 
 uint64_t Trainer::device_bytes() const {
     const auto& d = *impl_;
@@ -279,6 +375,7 @@ uint64_t Trainer::device_bytes() const {
 }
 
 void Trainer::save_checkpoint(const std::filesystem::path& path, io::WriteMode mode) const {
+    impl_->finish();
     const auto& d = *impl_;
     CheckpointData data;
     data.header = {.gaussians = d.scene.layout.count, .iteration = d.iteration, .owner = d.options.checkpoint_owner};

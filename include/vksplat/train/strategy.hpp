@@ -15,7 +15,8 @@ public:
     virtual ~Strategy() = default;
     // Before step `iteration` (counted from 1, as the reference counts).
     virtual void before_step(Trainer& trainer, uint64_t iteration) = 0;
-    // After it: densification and opacity resets happen here.
+    // After it is submitted (Trainer::submit; it may still run: whatever reads or changes the scene
+    // waits for it): densification and opacity resets happen here.
     virtual void after_step(Trainer& trainer, uint64_t iteration) = 0;
 };
 

@@ -3,11 +3,18 @@
 // 3DGS trainer's loss and optimiser (Kerbl et al. 2023, gaussian-splatting train.py):
 //   loss = (1 - lambda) L1 + lambda (1 - SSIM), lambda = 0.2, on the rendered picture against the photo;
 //   Adam over positions, log-scales, quaternions, opacity logits and SH, each group at its own rate.
-// A step is one submission: forward frame, loss, backward passes, Adam.
+// A step is one submission: forward frame, loss, backward passes, Adam. submit() prepares a step
+// (copies its photo, records its commands) while the step before it runs on the GPU, and only then
+// waits for that one: the GPU does not idle while the host prepares. One step is on the GPU at a
+// time; its result arrives when the next is submitted, or by finish().
 //
 //   gpu::Context context;
 //   train::Trainer trainer(context, cloud, options);
-//   for (...) trainer.step(cameras[v], photos[v]);
+//   for (...) {
+//       trainer.submit(cameras[v], photos[v]);
+//       for (const StepResult& result : trainer.take_results()) ...
+//   }
+//   trainer.finish();  // the last step's result joins take_results()
 //   io::write_scene(out, trainer.cloud());
 #include <array>
 #include <cstdint>
@@ -165,10 +172,23 @@ public:
     Trainer& operator=(const Trainer&) = delete;
 
     // One iteration: render `camera`, compare with `photo`, back-propagate, Adam. Throws
-    // InputError if the photo's size is not the camera's.
+    // InputError if the photo's size is not the camera's. Submits the step and waits for it, so
+    // its result is returned, not kept for take_results().
     StepResult step(const Camera& camera, const Photo& photo);
+    // The same iteration without waiting for it: records it (the photo is copied, so the caller
+    // may drop it), waits for the step in flight, keeps that one's result and submits this one.
+    // It runs with the SH degree and the position rate of the moment of this call. A step of
+    // another image size than the one in flight waits for that one first (the buffers may grow).
+    void submit(const Camera& camera, const Photo& photo);
+    // Waits for the step in flight, if any, keeping its result. Every call below that reads or
+    // changes the scene on the device does so first (densify, relocate, remove, reset_opacity,
+    // cloud, save_checkpoint), as does the destructor (dropping the result).
+    void finish();
+    // The results of the steps submitted and finished since the last call, in their order.
+    std::vector<StepResult> take_results();
 
-    // Steps taken (applied or skipped), and of those skipped for non-finite gradients.
+    // Steps submitted (applied, skipped or in flight), and of those finished, those skipped for
+    // non-finite gradients.
     uint64_t iteration() const;
     uint64_t skipped_steps() const;
     // The position learning rate the next step uses.
