@@ -59,6 +59,19 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
     auto last_report = start;
     double loss_sum = 0, mse_sum = 0;
     uint64_t since_report = 0;
+    // Steps are submitted without waiting (Trainer::submit): their results arrive one step late, or
+    // when the strategy, a snapshot or a checkpoint waits for the step in flight.
+    const auto take_results = [&] {
+        for (const StepResult& step : trainer.take_results()) {
+            step_times.push_back(step.gpu_milliseconds);
+            stages.add(step.stages);
+            loss_sum += step.loss;
+            mse_sum += std::pow(10.0, -step.psnr / 10.0);
+            ++since_report;
+        }
+        check_skipped_steps(trainer, options.source);
+        result.peak_device_bytes = std::max(result.peak_device_bytes, trainer.device_bytes());
+    };
     const uint64_t first = trainer.iteration();
     while (trainer.iteration() < options.iterations) {
         if (options.stop && options.stop->load()) {
@@ -68,20 +81,15 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
         const uint64_t iteration = trainer.iteration() + 1;  // the reference counts from 1
         strategy.before_step(trainer, iteration);
         const size_t view = training_view(iteration - 1, options.seed, train_views);
-        const StepResult step = trainer.step(cameras[view], photos.at(view));
-        check_skipped_steps(trainer, options.source);
-        step_times.push_back(step.gpu_milliseconds);
-        stages.add(step.stages);
-        result.peak_device_bytes = std::max(result.peak_device_bytes, trainer.device_bytes());
-        loss_sum += step.loss;
-        mse_sum += std::pow(10.0, -step.psnr / 10.0);
-        ++since_report;
+        trainer.submit(cameras[view], photos.at(view));
+        take_results();
 
         const auto strategy_start = Clock::now();
         strategy.after_step(trainer, iteration);
         result.strategy_seconds += seconds_since(strategy_start);
 
         const bool last = iteration == options.iterations;
+        if (last) trainer.finish();  // the last report counts the last step
         if (options.snapshot && ((options.snapshot_every > 0 && iteration % options.snapshot_every == 0) || last)) {
             const auto snapshot_start = Clock::now();
             options.snapshot(trainer, iteration);
@@ -89,7 +97,8 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
         }
         if (!options.checkpoint.empty() && (iteration % options.checkpoint_every == 0 || last))
             trainer.save_checkpoint(options.checkpoint);
-        if (progress && (last || seconds_since(last_report) >= kReportSeconds)) {
+        take_results();  // of a step that the strategy, the snapshot, the checkpoint or the last waited for
+        if (progress && since_report > 0 && (last || seconds_since(last_report) >= kReportSeconds)) {
             LoopStatus status;
             status.iteration = iteration;
             status.iterations = options.iterations;
@@ -104,6 +113,8 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
             since_report = 0;
         }
     }
+    trainer.finish();
+    take_results();
     result.seconds = seconds_since(start) - result.snapshot_seconds;
     if (result.interrupted && !options.checkpoint.empty()) trainer.save_checkpoint(options.checkpoint);
     result.iterations = trainer.iteration();

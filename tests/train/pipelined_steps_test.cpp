@@ -1,12 +1,13 @@
 // Trainer::submit prepares a step while the one before runs: the same steps as Trainer::step,
 // byte for byte, with every result kept in order, through overflowed frames, densification, a
-// view of another size and the blend backward's timing of both forms.
+// view of another size and the blend backward's timing of both forms; the training loop's use.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <functional>
+#include <map>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,7 +16,9 @@
 #include "support/scenes.hpp"
 #include "vksplat/io/image.hpp"
 #include "vksplat/render/renderer.hpp"
+#include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"
+#include "vksplat/train/training_loop.hpp"
 
 namespace vksplat::test {
 namespace {
@@ -135,6 +138,26 @@ TEST_F(PipelinedSteps, WhatReadsOrChangesTheSceneWaitsForTheStepInFlight) {
         EXPECT_EQ(trainer.take_results().size(), 1u) << calls[i].first;
     }
     fs::remove(checkpoint);
+}
+
+// The loop counts each step's result as it arrives, one step late; the last one's before the loop
+// reports the last step and returns, and none is left behind.
+TEST_F(PipelinedSteps, TheTrainingLoopCountsTheLastStep) {
+    train::Trainer trainer(context(), random_scene(3, 24, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.0f), {});
+    train::RefitStrategy strategy;
+    std::map<size_t, train::Photo> row;
+    for (size_t v = 0; v < 5; ++v) row.emplace(v, photos[v]);
+    std::vector<train::LoopStatus> reported;
+    train::LoopOptions options;
+    options.iterations = 1;
+    const train::LoopResult result =
+        train::run_training_loop(trainer, strategy, cameras, {0, 1, 2, 3, 4}, row, options,
+                                 [&](const train::LoopStatus& status) { reported.push_back(status); });
+    ASSERT_EQ(reported.size(), 1u);
+    EXPECT_EQ(reported[0].iteration, 1u);
+    EXPECT_GT(reported[0].loss, 0.0);
+    EXPECT_FALSE(result.stages.empty());
+    EXPECT_TRUE(trainer.take_results().empty());
 }
 
 // `fastest` times both forms of the blend backward from the steps' own timestamps. The step in

@@ -2,9 +2,10 @@
 // The one training loop. `vksplat train`, `finetune` and `prune --recover` are configurations of
 // it: a trainer (the scene and its optimiser), a strategy (strategy.hpp: SH degree, densification),
 // the training views with their photos, and these options. Each step renders the next training
-// view, compares it with its photo, back-propagates and steps Adam (Trainer::step); between steps
-// the loop checkpoints, stops when asked (Ctrl-C) or when steps keep being skipped
-// (check_skipped_steps), and reports progress.
+// view, compares it with its photo, back-propagates and steps Adam (Trainer::submit: the host
+// prepares each step while the one before runs); between steps the loop checkpoints, stops when
+// asked (Ctrl-C) or when steps keep being skipped (check_skipped_steps), and reports progress,
+// counting each step's result as it arrives (one step late).
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
