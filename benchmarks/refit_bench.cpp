@@ -56,7 +56,7 @@ int main(int argc, char** argv) {
     app.add_option("--seconds", seconds, "instead of --iters: a wall-time budget for the whole re-fit")->excludes(iters);
     app.add_option("--lr", rate_factors,
                    "GROUP=F: that group's learning rate times F (sh_dc, sh_rest, opacity, scale, rotation,\n"
-                   "position: both ends of its decay); repeatable")
+                   "position: both ends of its decay; others_final: the others decay to F x by the end); repeatable")
         ->each([](const std::string& text) {
             if (text.find('=') == std::string::npos) throw CLI::ValidationError("--lr", "wants GROUP=F");
         });
@@ -96,6 +96,7 @@ int main(int argc, char** argv) {
             else if (group == "scale") r.scale *= factor;
             else if (group == "rotation") r.rotation *= factor;
             else if (group == "position") r.position_initial *= factor, r.position_final *= factor;
+            else if (group == "others_final") r.others_final *= factor;
             else throw InputError("--lr " + text, "names no learning rate");
             std::printf("learning rate %s x %g\n", group.c_str(), factor);
         }

@@ -60,6 +60,8 @@ int main(int argc, char** argv) {
     app.add_option("--prune-ratio", recipe.budget.prune_ratio);
     app.add_option("--start-fraction", recipe.start_fraction);
     app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
+    app.add_option("--others-final", recipe.rates.others_final,
+                   "the rates but position's decay to this multiple of themselves by the end");
     app.add_option("--settle-rounds", recipe.budget.settle_rounds, "settle to the budget in this many rounds");
     app.add_option("--settle-spacing", recipe.budget.settle_spacing, "steps between settling rounds");
     bool restart_decay = false;

@@ -317,6 +317,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     train_options.deterministic = options.deterministic;
     train_options.blend_backward = options.blend_backward;
     train_options.position_schedule = train::PositionSchedule::decay;
+    train_options.rates = recipe.rates;
     train_options.rates.position_decay_steps = int(std::min<uint64_t>(recipe.iterations, 1u << 30));
     std::unique_ptr<train::Trainer> trainer =
         options.resume ? std::make_unique<train::Trainer>(context, checkpoint, train_options)

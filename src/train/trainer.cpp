@@ -64,6 +64,7 @@ struct Trainer::Impl {
         uint64_t step = 0;  // 0-based: Adam's bias correction and the noise's seed count it
         int sh_degree = 0;
         double position_rate = 0;
+        double other_rates_factor = 1;
     };
 
     const gpu::Context& context;
@@ -114,14 +115,21 @@ struct Trainer::Impl {
         pixel_capacity = pixels;
     }
 
+    // How far the decay has gone, 0 to 1.
+    double decay_progress() const {
+        const double since = double(iteration) - double(std::min(iteration, position_decay.from));
+        return std::clamp(since / std::max(position_decay.steps, 1), 0.0, 1.0);
+    }
+
     double position_rate() const {
         const auto& r = options.rates;
         if (options.position_schedule == PositionSchedule::final_rate) return r.position_final * options.scene_extent;
         // The reference's get_expon_lr_func (without its delay, which the reference leaves off).
-        const double since = double(iteration) - double(std::min(iteration, position_decay.from));
-        const double t = std::clamp(since / std::max(position_decay.steps, 1), 0.0, 1.0);
+        const double t = decay_progress();
         return std::exp(std::log(r.position_initial) * (1 - t) + std::log(r.position_final) * t) * options.scene_extent;
     }
+
+    double other_rates_factor() const { return std::pow(options.rates.others_final, decay_progress()); }
 
     shader::train::AdamStepPush adam_push(const Slot& slot) const {
         const auto& r = options.rates;
@@ -134,11 +142,11 @@ struct Trainer::Impl {
                 .count = scene.layout.count,
                 .sh_floats = scene.layout.sh_coefficients * 3,
                 .lr_position = static_cast<float>(slot.position_rate),
-                .lr_scale = static_cast<float>(r.scale),
-                .lr_rotation = static_cast<float>(r.rotation),
-                .lr_opacity = static_cast<float>(r.opacity),
-                .lr_sh_dc = static_cast<float>(r.sh_dc),
-                .lr_sh_rest = static_cast<float>(r.sh_rest),
+                .lr_scale = static_cast<float>(r.scale * slot.other_rates_factor),
+                .lr_rotation = static_cast<float>(r.rotation * slot.other_rates_factor),
+                .lr_opacity = static_cast<float>(r.opacity * slot.other_rates_factor),
+                .lr_sh_dc = static_cast<float>(r.sh_dc * slot.other_rates_factor),
+                .lr_sh_rest = static_cast<float>(r.sh_rest * slot.other_rates_factor),
                 .beta1 = kBeta1,
                 .beta2 = kBeta2,
                 .epsilon = kEpsilon,
@@ -190,6 +198,7 @@ void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
     slot.step = iteration;
     slot.sh_degree = sh_degree;
     slot.position_rate = position_rate();
+    slot.other_rates_factor = other_rates_factor();
     record(slot);
     // The recording used the tile entries of the moment: the step before, overflowing, grew them.
     if (in_flight && finish_in_flight()) record(slot);

@@ -107,6 +107,38 @@ TEST_F(Trainer, RecoversAPerturbedSceneOnHeldOutViews) {
     EXPECT_EQ(trainer.skipped_steps(), 0u);
 }
 
+// LearningRates::others_final: the scale, rotation, opacity and SH rates decay with the position
+// rate's progress. Decayed to 1e-9 of themselves after the first step (decay over one step), the
+// third step moves none of them, where at the reference's constant rates it moves all of them.
+TEST_F(Trainer, OtherRatesDecayToTheirFinalMultiple) {
+    const auto cameras = arc_of_views(48, 40);
+    const GaussianCloud truth = cluster(5, 40);
+    Renderer renderer(context());
+    renderer.set_scene(truth);
+    const train::Photo photo = train::Photo::from_image(as_image(renderer.render(cameras[2])));
+    const GaussianCloud start = perturbed(truth, 11);
+    const auto moved = [&](double others_final) {
+        train::TrainOptions options;
+        options.rates.position_decay_steps = 1;
+        options.rates.others_final = others_final;
+        train::Trainer trainer(context(), start, options);
+        for (int i = 0; i < 2; ++i) trainer.step(cameras[2], photo);
+        const GaussianCloud before = trainer.cloud();
+        trainer.step(cameras[2], photo);
+        const GaussianCloud after = trainer.cloud();
+        double most = 0;
+        for (size_t i = 0; i < before.opacity_logits.size(); ++i)
+            most = std::max<double>(most, std::abs(after.opacity_logits[i] - before.opacity_logits[i]));
+        for (size_t i = 0; i < before.log_scales.size(); ++i)
+            most = std::max<double>(most, std::abs(after.log_scales[i] - before.log_scales[i]));
+        for (size_t i = 0; i < before.sh.size(); ++i)
+            most = std::max<double>(most, std::abs(after.sh[i] - before.sh[i]));
+        return most;
+    };
+    EXPECT_GT(moved(1.0), 1e-3);
+    EXPECT_LT(moved(1e-9), 1e-7);
+}
+
 TEST_F(Trainer, RefusesAPhotoOfTheWrongSize) {
     const auto cameras = arc_of_views(32, 24);
     train::Trainer trainer(context(), cluster(2, 10), {});

@@ -54,6 +54,8 @@ struct TrainRecipe : train::ReferenceSchedule {
     // subset of the starting points.
     train::McmcSchedule mcmc;
     double start_fraction = 0.5;
+    // The reference's rates; the position rate's decay runs over `iterations`.
+    train::LearningRates rates;
     uint64_t iterations = 30000;
     uint64_t test_every = 8;            // COLMAP: every 8th photo by name is a test view (llffhold)
     size_t random_points = 100000;      // NeRF-synthetic and INRIA starts

@@ -48,6 +48,9 @@ struct LearningRates {
     double opacity = 0.025;
     double scale = 0.005;
     double rotation = 0.001;
+    // The other groups' rates (scale, rotation, opacity, SH) decay log-linearly to this multiple of
+    // themselves alongside the position rate's decay (1: constant, as in the reference).
+    double others_final = 1.0;
 };
 
 enum class PositionSchedule {
