@@ -190,6 +190,38 @@ expect cluster-bad-subject 2 "expected auto or x,y,z,r" -- "$vksplat" cluster pr
 expect cluster-subject-needs-focus 2 "the cameras have no common focus" -- "$vksplat" cluster prune \
   "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw" --images "$work/photos" -o "$work/x.ply"
 
+# The automatic preset: three cameras zoomed in on the middle of the demo scene leave most of it far
+# from every picture's centre (a room the views do not look at), so `cluster` chooses keep-subject and
+# says why; the object-centred three.json got whole-picture. An explicit selection option wins.
+cat >"$work/zoom.json" <<'JSON'
+[{"id": 0, "img_name": "a", "width": 80, "height": 60, "position": [0, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 350, "fy": 350},
+ {"id": 1, "img_name": "b", "width": 80, "height": 60, "position": [0.1, 0, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 350, "fy": 350},
+ {"id": 2, "img_name": "c", "width": 80, "height": 60, "position": [0, 0.1, 5],
+  "rotation": [[1, 0, 0], [0, -1, 0], [0, 0, -1]], "fx": 350, "fy": 350}]
+JSON
+expect cluster-auto-object 0 "preset: whole-picture (automatic: 0.0% of the 38605 Gaussians are room" -- \
+  "$vksplat" cluster score "$work/demo/demo.ply" --cameras "$work/three.json" --work "$work/cw" --force
+expect cluster-auto-room 0 "preset: keep-subject (automatic:" -- "$vksplat" cluster run "$work/demo/demo.ply" \
+  --cameras "$work/zoom.json" --work "$work/zw" --seg-k 150 -o "$work/zoom_auto.ply"
+expect cluster-auto-is-keep-subject 0 "(20.0% kept)" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/zoom.json" --work "$work/zw" --preset keep-subject -o "$work/zoom_keep.ply"
+cmp -s "$work/zoom_auto.ply" "$work/zoom_keep.ply" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: the automatic choice differs from --preset keep-subject"; }
+expect cluster-whole-picture 0 "wrote $work/zoom_whole.ply" -- "$vksplat" cluster prune "$work/demo/demo.ply" \
+  --cameras "$work/zoom.json" --work "$work/zw" --preset whole-picture -o "$work/zoom_whole.ply"
+given=$("$vksplat" cluster prune "$work/demo/demo.ply" --cameras "$work/zoom.json" --work "$work/zw" \
+  --max-contribution-loss 0.002 -o "$work/zoom_given.ply" 2>&1)
+if ! grep -q "preset:" <<<"$given" && cmp -s "$work/zoom_given.ply" "$work/zoom_whole.ply" &&
+   ! cmp -s "$work/zoom_given.ply" "$work/zoom_auto.ply"; then
+  passed=$((passed + 1))
+else
+  failed=$((failed + 1)); echo "FAILED: an explicit --max-contribution-loss did not win over the automatic preset"
+  echo "$given" | sed 's/^/    /' | tail -n 15
+fi
+expect cluster-help-says-auto 0 "score and prune choose (--preset auto)" -- "$vksplat" cluster --help
+
 # Bad input, each with the message that names it.
 head -c 9000000 "$work/demo/demo.ply" >"$work/truncated.ply"
 expect truncated-ply 2 "truncated.ply" -- "$vksplat" info "$work/truncated.ply"

@@ -1,5 +1,6 @@
 // vksplat cluster: saliency-aware cluster pruning, one subcommand per stage plus `run` for all.
 // Each stage reads what the stages before it saved in --work (see jobs/cluster_work_dir.hpp).
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -27,7 +28,8 @@ struct ClusterArgs {
     std::string scene, cameras, work, out, import_dir, images, test_views;
     std::string subject = "auto", subject_masks, sheets;
     std::string ratio_of = "gaussians";
-    std::string preset;  // empty: the options as given
+    std::string preset = "auto";
+    bool preset_given = false, score_or_selection_given = false;  // on the command line
     std::vector<float> background{0, 0, 0};
     std::optional<double> score_threshold, max_psnr_drop;
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
@@ -137,7 +139,15 @@ int run_stages(ClusterArgs& args, unsigned stages) {
     auto& options = args.stage.options;
     options.selection.threshold = args.score_threshold;
     options.selection.ratio_of = cluster::parse_ratio_of(args.ratio_of);
-    if (!args.preset.empty()) jobs::apply_cluster_preset(jobs::parse_cluster_preset(args.preset), options);
+    if (args.preset != "auto") {
+        jobs::apply_cluster_preset(jobs::parse_cluster_preset(args.preset), options);
+    } else if (stages & (kScore | kPrune) && (args.preset_given || !args.score_or_selection_given)) {
+        // Explicit score or selection options win over the automatic choice; --preset auto does not
+        // mix with them (CLI11 refuses both).
+        const jobs::ClusterPresetChoice choice = jobs::choose_cluster_preset(cloud, cameras, options);
+        jobs::apply_cluster_preset(choice.preset, options);
+        log_line(jobs::describe(choice));
+    }
     jobs::ClusterStageIo io{args.work, mode, log_line, {}};
     std::filesystem::create_directories(args.work);
 
@@ -260,20 +270,34 @@ CLI::App* add_stage(CLI::App& cluster, Action& action, const char* name, const c
                           "[K,H,W]) or .png (16-bit labels, 0 = none)")
             ->check(CLI::ExistingDirectory);
     if (stages & kPrune) add_prune(*command, *args);
+    CLI::Option* preset = nullptr;
+    std::vector<CLI::Option*> score_and_selection;
     if (stages & (kScore | kPrune)) {
-        auto* preset = command->add_option(
+        preset = command->add_option(
             "--preset", args->preset,
-            "named score and selection settings: keep-subject (drop the room: lambda 1, 80% of the Gaussians, no "
-            "limit on the picture's loss), whole-picture (the defaults) or original (the issue's G*, 90% of the "
-            "clusters); excludes the options it sets");
-        preset->check(CLI::IsMember({"whole-picture", "keep-subject", "original"}));
+            "named score and selection settings: auto (keep-subject where at least half of the Gaussians are room "
+            "the views do not look at, else whole-picture; the default unless a score or selection option is "
+            "given), keep-subject (drop the room: lambda 1, 80% of the Gaussians, no limit on the picture's loss), "
+            "whole-picture (the defaults: half the Gaussians while the dropped paint at most 0.2% of the picture) or "
+            "original (the issue's G*, 90% of the clusters); excludes the options it sets");
+        preset->check(CLI::IsMember({"auto", "whole-picture", "keep-subject", "original"}))->capture_default_str();
         for (const char* name : {"--alpha", "--beta", "--gamma", "--mvr-mean-frac-weight", "--kappa", "--lambda",
                                  "--central-threshold", "--prune-ratio", "--ratio-of", "--max-contribution-loss",
                                  "--score-threshold"})
-            if (CLI::Option* option = command->get_option_no_throw(name)) preset->excludes(option);
+            if (CLI::Option* option = command->get_option_no_throw(name)) {
+                preset->excludes(option);
+                score_and_selection.push_back(option);
+            }
+        // A quality budget is a selection too: the automatic choice leaves it the whole-picture ranking.
+        if (CLI::Option* budget = command->get_option_no_throw("--max-psnr-drop")) score_and_selection.push_back(budget);
     }
     if (stages & (kRegions | kProject) || stages & kPrune) add_gpu_options(*command, args->gpu);
-    command->callback([&action, args, stages] { action = [args, stages] { return run_stages(*args, stages); }; });
+    command->callback([&action, args, stages, preset, score_and_selection] {
+        args->preset_given = preset && preset->count() > 0;
+        args->score_or_selection_given = std::any_of(score_and_selection.begin(), score_and_selection.end(),
+                                                     [](const CLI::Option* option) { return option->count() > 0; });
+        action = [args, stages] { return run_stages(*args, stages); };
+    });
     return command;
 }
 
@@ -293,6 +317,9 @@ void register_cluster(CLI::App& app, Action& action) {
         "--alpha 0.1 --beta 0.1 --gamma 1 --kappa 0 --prune-ratio 0.9 --ratio-of clusters --max-contribution-loss 1\n"
         "To keep the subject and drop the room: --preset keep-subject (--lambda 1 --prune-ratio 0.8\n"
         "--max-contribution-loss 1); --preset original for the issue's method.\n"
+        "Without a preset or a score or selection option, score and prune choose (--preset auto): keep-subject\n"
+        "where at least half of the Gaussians are room (centrality under --central-threshold in the rendered\n"
+        "views: the views do not look at them), else whole-picture; they print the choice and its numbers.\n"
         "Example:\n  vksplat cluster run snowmiku/point_cloud.ply --cameras snowmiku/cameras.json --work w -o out.ply");
     const unsigned all = kRegions | kProject | kBuild | kScore | kPrune;
     add_stage(*cluster, action, "regions", "render training views and segment them into region maps", kRegions,

@@ -76,6 +76,30 @@ std::string_view to_string(ClusterPreset preset);
 ClusterPreset parse_cluster_preset(std::string_view name);
 void apply_cluster_preset(ClusterPreset preset, ClusterOptions& options);
 
+// The automatic choice, what `vksplat cluster` does when neither a preset nor a score or selection
+// option is given: keep_subject when the views do not look at most of the scene (a room around a
+// subject), whole_picture otherwise. Room: the Gaussians keep_subject's score would not call
+// central, centrality (cluster/centrality.hpp) under options.weights.central_threshold in the views
+// stage 1 renders (region_views). Measured at 0.25 in 50 views: bonsai 80.0% room (and two
+// separate groups: 1.4% of its Gaussians between 0.23 and 0.63), snowmiku 39.2% (a plush toy on a
+// bed, filmed from its front half; centralities spread evenly from 0 to 0.9), lego 0.0% (its least central 0.36). Half
+// lies between them: keep_subject drops 80% of the Gaussians, room first, so below half of the
+// scene in the room it would drop much of the subject too (snowmiku keeps its whole-picture
+// default, which drops 14.9% for -0.14 dB).
+inline constexpr double kKeepSubjectFromRoomShare = 0.5;
+struct ClusterPresetChoice {
+    ClusterPreset preset = ClusterPreset::whole_picture;
+    size_t gaussians = 0;
+    size_t room = 0;   // Gaussians of centrality under central_threshold
+    size_t views = 0;  // the views centrality was measured in
+    double central_threshold = 0;
+    double room_share() const { return gaussians ? double(room) / double(gaussians) : 0.0; }
+};
+ClusterPresetChoice choose_cluster_preset(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
+                                          const ClusterOptions& options);
+// One line for the user: the choice and the numbers it was made from.
+std::string describe(const ClusterPresetChoice& choice);
+
 // Messages for the user: warnings, views dropped and why, statistics. One line per call.
 using Log = std::function<void(const std::string&)>;
 
