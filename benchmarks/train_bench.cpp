@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
                    "the rates but position's decay to this multiple of themselves by the end");
     app.add_option("--settle-rounds", recipe.budget.settle_rounds, "settle to the budget in this many rounds");
     app.add_option("--settle-spacing", recipe.budget.settle_spacing, "steps between settling rounds");
-    bool restart_decay = false;
-    app.add_flag("--restart-decay", restart_decay, "the position rate decays afresh from the settling on");
+    app.add_option("--restart-decay", recipe.budget.restart_decay,
+                   "true: the position rate decays afresh from the settling on (the default)");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     bool deterministic = false;
     app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");
@@ -79,7 +79,6 @@ int main(int argc, char** argv) {
         recipe.densify.max_gaussians = max_gaussians;
         if (densify_until) recipe.densify_until = recipe.budget.densify_until = *densify_until;
         recipe.strategy = jobs::parse_densify_strategy(strategy);
-        if (restart_decay) recipe.budget.restart_decay_steps = recipe.iterations - recipe.budget.densify_until;
         if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");
         recipe.budget.ranking = ranking == "sum" ? train::DensifyRanking::gradient_sum : train::DensifyRanking::mean_gradient;
         gpu::Context context(gpu::ContextOptions{device, false, 0});

@@ -131,7 +131,8 @@ std::string budget_text(const TrainRecipe& r) {
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
            std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
-           ", start " + std::to_string(r.start_fraction);
+           ", settling " + std::to_string(b.settle_rounds) + " x " + std::to_string(b.settle_spacing) +
+           (b.restart_decay ? " restarting the decay" : "") + ", start " + std::to_string(r.start_fraction);
 }
 
 // What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the
@@ -304,6 +305,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         budget.budget = budget_count;
         budget.start = subset ? subset->size() : data.initial.size();
         budget.settle_at = std::min(schedule.densify_until, recipe.iterations);
+        budget.iterations = recipe.iterations;
+        // Every settling round inside the run: a short run settles in rounds closer together, or at once.
+        const uint64_t after = recipe.iterations - budget.settle_at;
+        budget.settle_spacing = std::min(budget.settle_spacing, after / uint64_t(std::max(budget.settle_rounds, 1)));
+        if (budget.settle_spacing == 0) budget.settle_rounds = 1;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));

@@ -69,8 +69,10 @@ void BudgetStrategy::prune_to(Trainer& trainer, size_t count) {
 void BudgetStrategy::before_step(Trainer& trainer, uint64_t iteration) {
     trainer.set_sh_degree(scheduled_step(reference_, iteration).sh_degree);
     // Set on every step after the settling, not once, so that a run resumed from a checkpoint has it.
-    if (budget_.restart_decay_steps > 0 && iteration > budget_.settle_at)
-        trainer.set_position_decay(budget_.settle_at, int(std::min<uint64_t>(budget_.restart_decay_steps, std::numeric_limits<int>::max())));
+    if (budget_.restart_decay && iteration > budget_.settle_at && budget_.iterations > budget_.settle_at) {
+        const uint64_t steps = budget_.iterations - budget_.settle_at;
+        trainer.set_position_decay(budget_.settle_at, int(std::min<uint64_t>(steps, std::numeric_limits<int>::max())));
+    }
 }
 
 void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {

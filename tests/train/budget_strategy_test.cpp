@@ -20,6 +20,8 @@ train::BudgetSchedule budget_of(size_t start, size_t budget, double exponent, do
     b.growth_exponent = exponent;
     b.reach = reach;
     b.peak = 1.0;
+    b.settle_rounds = 1;
+    b.restart_decay = false;
     return b;
 }
 
@@ -164,7 +166,8 @@ TEST_F(BudgetTraining, SettlesInRoundsWhenAsked) {
     budget.settle_at = 60;
     budget.settle_rounds = 2;
     budget.settle_spacing = 15;
-    budget.restart_decay_steps = 40;
+    budget.restart_decay = true;
+    budget.iterations = 100;  // the restarted decay runs over the 40 steps after the settling
     std::vector<uint64_t> scored_at;
     std::vector<size_t> scored_sizes;
     std::vector<uint8_t> every_third(60, 0);

@@ -38,23 +38,27 @@ struct BudgetSchedule {
     double min_gradient = 0.0002;
     // Fraction of the Gaussians removed at each in-window opacity reset (0: none).
     double prune_ratio = 0.0;
-    // Growth aims at peak x budget; after the step `settle_at` the Gaussians beyond the budget,
+    // Growth aims at peak x budget; from the step `settle_at` on, the Gaussians beyond the budget,
     // the least important, are removed and the rest train on. A selection from a larger trained
-    // scene keeps more than one grown to the budget: on bonsai (H100, means of 3 runs) peak 2
-    // gives 29.35 dB at 80,000 and 27.80 at 40,000 where peak 1 gave 28.53 and 26.60 (one run
-    // each) and the cap 28.21 and 21.40; peaks 3 to 10 were no better (benchmarks/RESULTS.md).
-    // The price: the peak's memory and time until settle_at.
-    double peak = 2.0;
+    // scene keeps more than one grown to the budget (bonsai, means of 3: peak 2 29.35 dB at 80,000
+    // and 27.80 at 40,000 where peak 1 gave 28.53 and 26.60 and the cap 28.21 and 21.40, with the
+    // old window until 15,000). The price: the peak's memory and time until the settling.
+    double peak = 3.0;
     uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
     // The settling in rounds, settle_spacing steps apart from settle_at on, each re-scoring the
-    // scene and keeping an equal share (geometric) of the way to the budget: the re-fits of issue 30
-    // lost less when pruned in three rounds than in one.
-    int settle_rounds = 1;
+    // scene and keeping an equal share (geometric) of the way to the budget, as the re-fits of issue
+    // 30 lost less when pruned in three rounds than in one. jobs shortens the spacing to fit a
+    // short run (every round before its end).
+    int settle_rounds = 3;
     uint64_t settle_spacing = 1000;
-    // > 0: from settle_at on, the position rate decays afresh from its initial rate over this many
-    // steps (Trainer::set_position_decay), as a re-fit of a pruned scene does, so that what the
-    // settling keeps can move into the gaps it leaves; 0 keeps the reference's one decay.
-    uint64_t restart_decay_steps = 0;
+    // From settle_at on, the position rate decays afresh from its initial rate to the end of the
+    // run (Trainer::set_position_decay), as a re-fit of a pruned scene does, so that what the
+    // settling keeps can move into the gaps it leaves; false keeps the reference's one decay.
+    bool restart_decay = true;
+    uint64_t iterations = 30000;   // jobs sets it: the run's length, where the restarted decay ends
+    // The three together (peak 3, 3 rounds, restarted decay) against peak 2 and one settling, H100,
+    // means of 3 runs (benchmarks/RESULTS.md): bonsai 80,000 29.99 dB against 29.66, 40,000
+    // 28.69 (2 runs) against 28.33; lego 50,000 35.97 against 35.66. Each alone gained 0.05-0.19.
     // Where vksplat::jobs ends this recipe's densification window (the reference's ends at 15,000):
     // settling earlier leaves more steps to re-fit what is kept. Bonsai (means of 3, H100/H200):
     // 80,000 29.66 dB against 29.35 at 15,000; 40,000 28.33 against 27.80; 400,000 31.07 against
