@@ -85,6 +85,43 @@ TEST(BudgetStrategy, RefusesSettingsItCannotFollow) {
 class BudgetTraining : public PhotographedViews {
 protected:
     BudgetTraining() : PhotographedViews(60) {}
+
+    // What a run of the strategy did: when it scored (and how many it scored), and the count and
+    // position rate at every snapshot.
+    struct Run {
+        std::vector<uint64_t> scored_at;
+        std::vector<size_t> scored_sizes;
+        std::map<uint64_t, size_t> counts;
+        std::map<uint64_t, double> rates;
+        train::BudgetEvents events;
+        size_t final_count = 0;
+    };
+    // Trains from every third Gaussian of the truth, scoring importance by opacity.
+    Run run(const train::ReferenceSchedule& reference, const train::BudgetSchedule& budget, uint64_t iterations,
+            uint64_t snapshot_every) {
+        Run out;
+        std::vector<uint8_t> every_third(60, 0);
+        for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
+        train::Trainer trainer(context(), truth.subset(every_third), {});
+        train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
+            out.scored_at.push_back(trainer.iteration());
+            out.scored_sizes.push_back(cloud.size());
+            std::vector<float> importance(cloud.size());
+            for (size_t i = 0; i < cloud.size(); ++i) importance[i] = cloud.opacity_logits[i];
+            return importance;
+        });
+        train::LoopOptions options;
+        options.iterations = iterations;
+        options.snapshot_every = snapshot_every;
+        options.snapshot = [&](const train::Trainer& t, uint64_t iteration) {
+            out.counts[iteration] = t.size();
+            out.rates[iteration] = t.position_learning_rate();
+        };
+        train::run_training_loop(trainer, strategy, cameras, views, photos, options);
+        out.events = strategy.events();
+        out.final_count = trainer.size();
+        return out;
+    }
 };
 
 // Removing Gaussians keeps the others' parameters, in order; the survivors keep training.
@@ -122,32 +159,17 @@ TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
     budget.prune_ratio = 0.25;
     budget.peak = 1.5;        // grows to 135, settles back to 90 after step 100
     budget.settle_at = 100;
-    std::vector<uint64_t> scored_at;
-    std::vector<uint8_t> every_third(60, 0);
-    for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
-    train::Trainer trainer(context(), truth.subset(every_third), {});
-    train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
-        scored_at.push_back(trainer.iteration());
-        std::vector<float> importance(cloud.size());
-        for (size_t i = 0; i < cloud.size(); ++i) importance[i] = cloud.opacity_logits[i];
-        return importance;
-    });
-    train::LoopOptions options;
-    options.iterations = 120;
-    std::map<uint64_t, size_t> counts;
-    options.snapshot_every = 10;
-    options.snapshot = [&](const train::Trainer& t, uint64_t iteration) { counts[iteration] = t.size(); };
-    train::run_training_loop(trainer, strategy, cameras, views, photos, options);
-    EXPECT_EQ(scored_at, (std::vector<uint64_t>{40, 80, 100}));  // the resets at 40 and 80, the settling
-    EXPECT_EQ(strategy.events().prune_events, 3u);
-    EXPECT_GT(strategy.events().pruned, 0u);
-    for (const auto& [iteration, count] : counts)
+    const Run r = run(reference, budget, 120, 10);
+    EXPECT_EQ(r.scored_at, (std::vector<uint64_t>{40, 80, 100}));  // the resets at 40 and 80, the settling
+    EXPECT_EQ(r.events.prune_events, 3u);
+    EXPECT_GT(r.events.pruned, 0u);
+    for (const auto& [iteration, count] : r.counts)
         if (iteration > reference.densify_from && iteration < reference.densify_until) {
             EXPECT_LE(count, train::growth_target(reference, budget, iteration)) << "at " << iteration;
         }
-    EXPECT_GT(counts.at(90), 90u);
-    EXPECT_EQ(counts.at(100), 90u);
-    EXPECT_EQ(trainer.size(), 90u);
+    EXPECT_GT(r.counts.at(90), 90u);
+    EXPECT_EQ(r.counts.at(100), 90u);
+    EXPECT_EQ(r.final_count, 90u);
 }
 
 // Settling in rounds: each round re-scores and keeps its geometric share; the last reaches the
@@ -168,42 +190,22 @@ TEST_F(BudgetTraining, SettlesInRoundsWhenAsked) {
     budget.settle_spacing = 15;
     budget.restart_decay = true;
     budget.iterations = 100;  // the restarted decay runs over the 40 steps after the settling
-    std::vector<uint64_t> scored_at;
-    std::vector<size_t> scored_sizes;
-    std::vector<uint8_t> every_third(60, 0);
-    for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
-    train::Trainer trainer(context(), truth.subset(every_third), {});
-    train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
-        scored_at.push_back(trainer.iteration());
-        scored_sizes.push_back(cloud.size());
-        std::vector<float> importance(cloud.size());
-        for (size_t i = 0; i < cloud.size(); ++i) importance[i] = cloud.opacity_logits[i];
-        return importance;
-    });
-    train::LoopOptions options;
-    options.iterations = 100;
-    std::map<uint64_t, size_t> counts;
-    options.snapshot_every = 5;
-    std::map<uint64_t, double> rates;
-    options.snapshot = [&](const train::Trainer& t, uint64_t iteration) {
-        counts[iteration] = t.size();
-        rates[iteration] = t.position_learning_rate();
-    };
-    train::run_training_loop(trainer, strategy, cameras, views, photos, options);
-    ASSERT_EQ(scored_at, (std::vector<uint64_t>{60, 75}));
+    const Run r = run(reference, budget, 100, 5);
+    ASSERT_EQ(r.scored_at, (std::vector<uint64_t>{60, 75}));
     // The position rate decays as usual until the settling, then afresh over 40 steps: half-way
     // (log-linear) at 80, the final rate from 100 on.
-    const train::LearningRates r;
-    EXPECT_NEAR(rates.at(50), r.position_initial * std::pow(r.position_final / r.position_initial, 50.0 / 30000), 1e-12);
-    EXPECT_NEAR(rates.at(80), std::sqrt(r.position_initial * r.position_final), 1e-12);
-    EXPECT_NEAR(rates.at(100), r.position_final, 1e-12);
-    EXPECT_GT(scored_sizes[0], 40u);
-    EXPECT_EQ(counts.at(60), train::settle_target(scored_sizes[0], 40, 2));
-    EXPECT_GT(counts.at(60), 40u);
-    EXPECT_EQ(counts.at(70), counts.at(60));
-    EXPECT_EQ(counts.at(75), 40u);
-    EXPECT_EQ(trainer.size(), 40u);
-    EXPECT_EQ(strategy.events().prune_events, 2u);
+    const train::LearningRates rates;
+    EXPECT_NEAR(r.rates.at(50),
+                rates.position_initial * std::pow(rates.position_final / rates.position_initial, 50.0 / 30000), 1e-12);
+    EXPECT_NEAR(r.rates.at(80), std::sqrt(rates.position_initial * rates.position_final), 1e-12);
+    EXPECT_NEAR(r.rates.at(100), rates.position_final, 1e-12);
+    EXPECT_GT(r.scored_sizes[0], 40u);
+    EXPECT_EQ(r.counts.at(60), train::settle_target(r.scored_sizes[0], 40, 2));
+    EXPECT_GT(r.counts.at(60), 40u);
+    EXPECT_EQ(r.counts.at(70), r.counts.at(60));
+    EXPECT_EQ(r.counts.at(75), 40u);
+    EXPECT_EQ(r.final_count, 40u);
+    EXPECT_EQ(r.events.prune_events, 2u);
 }
 
 }  // namespace
