@@ -628,6 +628,13 @@ void Renderer::render_gpu_only(const Camera& camera, const RenderSettings& setti
     impl_->run(camera, settings, false);
 }
 
+GaussianStats Renderer::render_stats(const Camera& camera, const RenderSettings& settings) {
+    RenderSettings with_stats = settings;
+    with_stats.gather_stats = true;
+    impl_->run(camera, with_stats, false);
+    return std::move(impl_->gathered);
+}
+
 void Renderer::record(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,
                       const RenderTarget& target) {
     impl_->record_into(command_buffer, camera, settings, target);

@@ -225,6 +225,34 @@ TEST_F(ChunkedRender, PerGaussianStatisticsMatchTheWholeFrames) {
     EXPECT_GT(contributing, 500u) << "the comparison should cover Gaussians of every chunk";
 }
 
+TEST_F(ChunkedRender, StatsAloneAreTheChunkedRendersStats) {
+    // render_stats reads back no picture, also from chunks; each chunk's statistics still come back.
+    if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit atomics on " << context().info().name;
+    const Camera camera = forward_camera(32, 32, 30.0);
+    GaussianCloud cloud = random_scene(36, 2000, 1);
+    cloud.positions[2] = -1.0f;  // one behind the camera
+    Renderer renderer(context());
+    renderer.set_scene(cloud, SceneStorage{.memory_budget = budget_for_chunk(500, 2000, 1, camera)});
+    const GaussianStats alone = renderer.render_stats(camera);
+    EXPECT_GE(renderer.last_frame().chunks, 4u);
+    RenderSettings settings;
+    settings.gather_stats = true;
+    const GaussianStats rendered = renderer.render(camera, settings).stats;
+    ASSERT_EQ(alone.size(), cloud.size());
+    EXPECT_EQ(alone.visible[0], 0);
+    EXPECT_EQ(alone.visible, rendered.visible);
+    EXPECT_EQ(alone.screen_x, rendered.screen_x);
+    EXPECT_EQ(alone.depth, rendered.depth);
+    EXPECT_EQ(alone.radius, rendered.radius);
+    EXPECT_EQ(alone.blend_weight, rendered.blend_weight);
+    EXPECT_EQ(alone.max_weight, rendered.max_weight);
+    EXPECT_EQ(alone.pixels, rendered.pixels);
+    EXPECT_EQ(alone.centre_weight, rendered.centre_weight);
+    size_t contributing = 0;
+    for (double w : alone.blend_weight) contributing += w > 0.0;
+    EXPECT_GT(contributing, 500u) << "the comparison should cover Gaussians of every chunk";
+}
+
 TEST_F(ChunkedRender, RecordingNeedsTheWholeScene) {
     const Camera camera = forward_camera(32, 32, 30.0);
     Renderer renderer(context());

@@ -3,6 +3,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <vector>
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
@@ -130,6 +132,50 @@ TEST_F(Stats, IndexedLikeTheInputWhenSanitisingDrops) {
         if (i == 10) continue;
         EXPECT_EQ(stats.visible[i], ref.visible[i]) << i;
         EXPECT_NEAR(stats.blend_weight[i], ref.blend_weight[i], 1e-3) << i;
+    }
+}
+
+// Each field the same bytes (not just ==, which would let -0 stand for 0).
+template <typename T>
+void expect_same_bytes(const std::vector<T>& a, const std::vector<T>& b, const char* field, size_t view) {
+    ASSERT_EQ(a.size(), b.size()) << field << ", view " << view;
+    EXPECT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(T)), 0) << field << ", view " << view;
+}
+
+TEST_F(Stats, StatsAloneAreRendersStatsByteForByte) {
+    // Gaussians in view, behind the cameras and far off to the side (culled, never blended).
+    GaussianCloud cloud = random_scene(36, 700, 2);
+    for (const GaussianCloud& extra : {random_scene(37, 60, 2, -5.0f, -1.0f), random_scene(38, 60, 2, 40.0f, 60.0f)})
+        for (size_t i = 0; i < extra.size(); ++i) cloud.append(extra, i);
+    for (size_t i = cloud.size() - 60; i < cloud.size(); ++i) cloud.positions[3 * i] += 500.0f;
+    const std::vector<Camera> cameras = {
+        forward_camera(96, 72, 80.0),
+        Camera::look_at({2.0, -0.5, 0.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0}, 64, 80, 60.0, 60.0),
+        Camera::look_at({0.0, 0.0, 9.0}, {0.0, 0.0, 5.0}, {0.0, -1.0, 0.0}, 80, 64, 70.0, 70.0)};  // looks back
+    Renderer renderer(context());
+    renderer.set_scene(cloud);
+    for (size_t v = 0; v < cameras.size(); ++v) {
+        // Stats alone first: were the statistics left from the previous frame, they would be its view's.
+        const GaussianStats alone = renderer.render_stats(cameras[v]);
+        const GaussianStats rendered = renderer.render(cameras[v], with_stats()).stats;
+        ASSERT_EQ(alone.size(), cloud.size());
+        expect_same_bytes(alone.visible, rendered.visible, "visible", v);
+        expect_same_bytes(alone.screen_x, rendered.screen_x, "screen_x", v);
+        expect_same_bytes(alone.screen_y, rendered.screen_y, "screen_y", v);
+        expect_same_bytes(alone.depth, rendered.depth, "depth", v);
+        expect_same_bytes(alone.radius, rendered.radius, "radius", v);
+        expect_same_bytes(alone.blend_weight, rendered.blend_weight, "blend_weight", v);
+        expect_same_bytes(alone.max_weight, rendered.max_weight, "max_weight", v);
+        expect_same_bytes(alone.pixels, rendered.pixels, "pixels", v);
+        expect_same_bytes(alone.centre_weight, rendered.centre_weight, "centre_weight", v);
+        // The comparison covers blended, culled and never-projected Gaussians.
+        size_t blended = 0, hidden = 0;
+        for (size_t i = 0; i < cloud.size(); ++i) {
+            blended += alone.blend_weight[i] > 0.0;
+            hidden += !alone.visible[i];
+        }
+        EXPECT_GT(blended, 100u) << "view " << v;
+        EXPECT_GE(hidden, 60u) << "view " << v;
     }
 }
 

@@ -78,6 +78,12 @@ public:
     RenderOutput render(const Camera& camera, const RenderSettings& settings = {});
     // Renders without reading the image back (for timing); the stats are filled in as usual.
     void render_gpu_only(const Camera& camera, const RenderSettings& settings = {});
+    // Renders one view for its per-Gaussian statistics alone (settings.gather_stats is implied):
+    // the frame of render() with gather_stats, blend pass included (it measures them), returning
+    // the same numbers as its .stats, but only they come back from the device, not the picture
+    // (24 bytes a pixel, whose copy and unpacking take a GPU longer than the frame itself). For
+    // passes that score views.
+    GaussianStats render_stats(const Camera& camera, const RenderSettings& settings = {});
     // Records the render of one view into `command_buffer`, which the application has begun and
     // will submit, leaving the picture in the application's image or buffer. Submits nothing and
     // waits for nothing, except the context's queue when buffers must grow. The synchronisation
