@@ -35,15 +35,13 @@ ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std:
             throw InputError("view " + std::to_string(view),
                              "there are only " + std::to_string(cameras.size()) + " cameras");
     renderer.set_scene(cloud);
-    RenderSettings with_stats = settings;
-    with_stats.gather_stats = true;
     const std::vector<float> opacity = opacities(cloud);
 
     ViewTotals totals(cloud.size());
     std::optional<FisherInformation> information;
     if (fisher) information.emplace(cloud, settings);
     for (size_t done = 0; done < views.size(); ++done) {
-        add_view(totals, renderer.render(cameras[views[done]], with_stats).stats, opacity);
+        add_view(totals, renderer.render_stats(cameras[views[done]], settings), opacity);
         if (information) information->add_view(cameras[views[done]]);
         ++totals.views;
         if (progress) progress(done + 1, views.size());

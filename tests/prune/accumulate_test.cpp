@@ -2,6 +2,9 @@
 // leaves the renders of those views bit-identical.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <numbers>
+
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
 #include "support/test_data.hpp"
@@ -9,6 +12,7 @@
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/ply.hpp"
 #include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/scores.hpp"
 #include "vksplat/prune/selection.hpp"
 
 namespace vksplat::test {
@@ -36,27 +40,33 @@ TEST_F(Accumulate, SumsThePerViewStatistics) {
     ASSERT_EQ(totals.size(), cloud.size());
     EXPECT_EQ(totals.views, 3u);
 
+    // The statistics of full renders (pictures and all), summed in the same order: the same numbers.
     RenderSettings settings;
     settings.gather_stats = true;
+    const std::vector<float> opacity = prune::opacities(cloud);
     prune::ViewTotals expected(cloud.size());
-    for (const Camera& camera : cameras) {
-        const GaussianStats stats = renderer.render(camera, settings).stats;
+    for (size_t view : {0, 2, 1}) {
+        const GaussianStats stats = renderer.render(cameras[view], settings).stats;
         for (size_t i = 0; i < cloud.size(); ++i) {
             expected.blend[i] += stats.blend_weight[i];
             expected.blend_max[i] = std::max(expected.blend_max[i], stats.max_weight[i]);
             expected.pixels[i] += stats.pixels[i];
-            expected.views_visible[i] += stats.visible[i];
+            if (!stats.visible[i]) continue;
+            expected.footprint[i] += double(opacity[i]) * std::numbers::pi * double(stats.radius[i]) * stats.radius[i];
+            ++expected.views_visible[i];
         }
     }
-    size_t seen = 0;
+    size_t seen = 0, blended = 0;
     for (size_t i = 0; i < cloud.size(); ++i) {
-        EXPECT_NEAR(totals.blend[i], expected.blend[i], 1e-9 * (1 + expected.blend[i])) << i;
+        EXPECT_EQ(totals.blend[i], expected.blend[i]) << i;
         EXPECT_EQ(totals.blend_max[i], expected.blend_max[i]) << i;
         EXPECT_EQ(totals.pixels[i], expected.pixels[i]) << i;
         EXPECT_EQ(totals.views_visible[i], expected.views_visible[i]) << i;
-        EXPECT_EQ(totals.footprint[i] > 0, totals.views_visible[i] > 0) << i;
+        EXPECT_EQ(totals.footprint[i], expected.footprint[i]) << i;
         seen += totals.views_visible[i] > 1;
+        blended += totals.blend[i] > 0.0;
     }
+    EXPECT_GT(blended, 100u) << "the views must blend what they see";
     EXPECT_GT(seen, 100u) << "the views must overlap for the sums to mean anything";
 }
 

@@ -36,8 +36,8 @@ struct ViewTotals {
 using Progress = std::function<void(size_t done, size_t total)>;
 
 // Uploads `cloud` (replacing the renderer's scene, so that the statistics are indexed like it),
-// renders each of `views` (indices into `cameras`) with gather_stats and sums the statistics.
-// `settings` gives the background and SH degree; gather_stats is set here. With `fisher` it also
+// renders the statistics of each of `views` (indices into `cameras`; Renderer::render_stats, which
+// reads back no picture) and sums them. `settings` gives the background and SH degree. With `fisher` it also
 // sums the Fisher information of each view (ViewTotals::fisher; the cloud must be sanitised).
 // Throws InputError for a view index out of range.
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
