@@ -119,8 +119,6 @@ ProjectedViews project_views(Renderer& renderer, const gpu::Context& context, co
                              const ClusterOptions& options, const prune::Progress& progress) {
     renderer.set_scene(cloud);
     cluster::Projector projector(context);
-    RenderSettings with_stats = options.settings;
-    with_stats.gather_stats = true;
     ProjectedViews out;
     std::vector<double> contribution(cloud.size(), 0.0);
     cluster::ViewLabels& labels = out.labels;
@@ -132,7 +130,7 @@ ProjectedViews project_views(Renderer& renderer, const gpu::Context& context, co
         if (view.view >= cameras.size())
             throw InputError("view " + std::to_string(view.view), "there are only " + std::to_string(cameras.size()) + " cameras");
         const Camera camera = camera_for_map(cameras[view.view], view.map, "region map of view " + std::to_string(view.view));
-        const GaussianStats stats = renderer.render(camera, with_stats).stats;
+        const GaussianStats stats = renderer.render_stats(camera, options.settings);
         const std::vector<int32_t> ids = projector.project(stats, view.map, options.projection);
         labels.ids.insert(labels.ids.end(), ids.begin(), ids.end());
         const double pixels = double(camera.width) * double(camera.height);
