@@ -96,6 +96,19 @@ protected:
         train::BudgetEvents events;
         size_t final_count = 0;
     };
+    // The reference's schedule scaled down to a hundred steps: densification every 10 steps from
+    // step 10, every drawn Gaussian a candidate.
+    static train::ReferenceSchedule scaled_schedule(uint64_t densify_until, uint64_t reset_interval, int sh_degree) {
+        train::ReferenceSchedule reference;
+        reference.sh_degree = sh_degree;
+        reference.sh_degree_interval = 20;
+        reference.densify_from = 10;
+        reference.densify_until = densify_until;
+        reference.densify_interval = 10;
+        reference.opacity_reset_interval = reset_interval;
+        reference.densify.grad_threshold = 0;
+        return reference;
+    }
     // Trains from every third Gaussian of the truth, scoring importance by opacity.
     Run run(const train::ReferenceSchedule& reference, const train::BudgetSchedule& budget, uint64_t iterations,
             uint64_t snapshot_every) {
@@ -146,14 +159,7 @@ TEST_F(BudgetTraining, RemoveKeepsTheOthersAsTheyWere) {
 // target after a densification, importance prunes at the opacity resets inside the window, the
 // count passes the budget on the way to its peak and settles to it after the window.
 TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
-    train::ReferenceSchedule reference;
-    reference.sh_degree = 1;
-    reference.sh_degree_interval = 20;
-    reference.densify_from = 10;
-    reference.densify_until = 100;
-    reference.densify_interval = 10;
-    reference.opacity_reset_interval = 40;
-    reference.densify.grad_threshold = 0;  // every drawn Gaussian may grow
+    const train::ReferenceSchedule reference = scaled_schedule(100, 40, 1);
     auto budget = budget_of(20, 90, 2.0);
     budget.min_gradient = 0;
     budget.prune_ratio = 0.25;
@@ -175,13 +181,7 @@ TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
 // Settling in rounds: each round re-scores and keeps its geometric share; the last reaches the
 // budget and nothing is scored after it.
 TEST_F(BudgetTraining, SettlesInRoundsWhenAsked) {
-    train::ReferenceSchedule reference;
-    reference.sh_degree = 0;
-    reference.densify_from = 10;
-    reference.densify_until = 60;
-    reference.densify_interval = 10;
-    reference.opacity_reset_interval = 1000;
-    reference.densify.grad_threshold = 0;
+    const train::ReferenceSchedule reference = scaled_schedule(60, 1000, 0);
     auto budget = budget_of(20, 40, 1.0);
     budget.min_gradient = 0;
     budget.peak = 2.0;
