@@ -255,7 +255,9 @@ typedef enum vksplat_score_method {
     VKSPLAT_SCORE_BLEND = 2,        /* sum over every pixel of every view of alpha * T */
     VKSPLAT_SCORE_BLEND_MAX = 3,    /* max over pixels and views of alpha * T */
     VKSPLAT_SCORE_VOLUME_BLEND = 4, /* blend weighted by volume (LightGaussian) */
-    VKSPLAT_SCORE_RANDOM = 5        /* seeded uniform: the baseline the others must beat */
+    VKSPLAT_SCORE_RANDOM = 5,       /* seeded uniform: the baseline the others must beat */
+    VKSPLAT_SCORE_FISHER = 6        /* log det of the pictures' Fisher information in mean and log-scale
+                                     * (PUP 3D-GS), computed on the CPU from the views */
 } vksplat_score_method;
 
 typedef struct vksplat_prune_options {

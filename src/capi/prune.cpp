@@ -27,6 +27,7 @@ vksplat::prune::ScoreMethod to_method(vksplat_score_method method) {
         case VKSPLAT_SCORE_BLEND_MAX: return ScoreMethod::blend_max;
         case VKSPLAT_SCORE_VOLUME_BLEND: return ScoreMethod::volume_blend;
         case VKSPLAT_SCORE_RANDOM: return ScoreMethod::random;
+        case VKSPLAT_SCORE_FISHER: return ScoreMethod::fisher;
     }
     throw std::invalid_argument("options->method " + std::to_string(int(method)) + " is no vksplat_score_method");
 }
@@ -54,7 +55,8 @@ vksplat_status vksplat_prune(vksplat_renderer* renderer, const vksplat_scene* sc
                 cameras.push_back(vksplat::capi::to_camera(asked.views[v], "views[" + std::to_string(v) + "]"));
             std::vector<size_t> views(cameras.size());
             std::iota(views.begin(), views.end(), size_t{0});
-            totals = vksplat::prune::accumulate(source, cloud, cameras, views, vksplat::capi::to_settings(asked.settings));
+            totals = vksplat::prune::accumulate(source, cloud, cameras, views, vksplat::capi::to_settings(asked.settings),
+                                                {}, vksplat::prune::needs_fisher(method));
             candidates = vksplat::prune::lossless_mask(totals);
         } else if (vksplat::prune::uses_views(method)) {
             throw std::invalid_argument("options->method " + std::string(vksplat::prune::to_string(method)) +
