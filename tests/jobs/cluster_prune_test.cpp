@@ -196,8 +196,10 @@ TEST_F(ClusterPrune, AQualityBudgetHoldsOnTheTestViews) {
     for (double budget : {0.05, 1.0}) {
         const fs::path out = dir / ("budget_" + std::to_string(budget) + ".ply");
         size_t probes = 0;
-        const auto result = jobs::prune_stage_to_budget(renderer, cloud, targets, {.max_psnr_drop = budget}, settings,
-                                                        out, io, [&](const prune::BudgetProbe&) { ++probes; });
+        prune::QualityBudget asked;
+        asked.max_psnr_drop = budget;
+        const auto result = jobs::prune_stage_to_budget(renderer, cloud, targets, asked, settings, out, io,
+                                                        [&](const prune::BudgetProbe&) { ++probes; });
         ASSERT_TRUE(result.budget);
         EXPECT_TRUE(result.budget->met);
         EXPECT_EQ(probes, result.budget->probes.size());
