@@ -306,10 +306,6 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         budget.start = subset ? subset->size() : data.initial.size();
         budget.settle_at = std::min(schedule.densify_until, recipe.iterations);
         budget.iterations = recipe.iterations;
-        // Every settling round inside the run: a short run settles in rounds closer together, or at once.
-        const uint64_t after = recipe.iterations - budget.settle_at;
-        budget.settle_spacing = std::min(budget.settle_spacing, after / uint64_t(std::max(budget.settle_rounds, 1)));
-        if (budget.settle_spacing == 0) budget.settle_rounds = 1;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));

@@ -50,6 +50,10 @@ BudgetStrategy::BudgetStrategy(const ReferenceSchedule& reference, const BudgetS
         throw std::invalid_argument("BudgetStrategy: prune ratio must lie in [0, 1)");
     if (budget_.settle_rounds < 1 || (budget_.settle_rounds > 1 && budget_.settle_spacing == 0))
         throw std::invalid_argument("BudgetStrategy: at least one settling round, rounds apart");
+    // Every settling round inside the run: a short run settles in rounds closer together, or at once.
+    const uint64_t after = budget_.iterations > budget_.settle_at ? budget_.iterations - budget_.settle_at : 0;
+    budget_.settle_spacing = std::min(budget_.settle_spacing, after / uint64_t(budget_.settle_rounds));
+    if (budget_.settle_spacing == 0) budget_.settle_rounds = 1;
     if (!(budget_.peak >= 1))
         throw std::invalid_argument("BudgetStrategy: the peak must be at least the budget");
     if ((budget_.prune_ratio > 0 || budget_.peak > 1) && !importance_)

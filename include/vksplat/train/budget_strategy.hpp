@@ -47,15 +47,15 @@ struct BudgetSchedule {
     uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
     // The settling in rounds, settle_spacing steps apart from settle_at on, each re-scoring the
     // scene and keeping an equal share (geometric) of the way to the budget, as the re-fits of issue
-    // 30 lost less when pruned in three rounds than in one. jobs shortens the spacing to fit a
-    // short run (every round before its end).
+    // 30 lost less when pruned in three rounds than in one. The strategy shortens the spacing to
+    // fit a short run (every round before `iterations`), or settles at once where none fits.
     int settle_rounds = 3;
     uint64_t settle_spacing = 1000;
     // From settle_at on, the position rate decays afresh from its initial rate to the end of the
     // run (Trainer::set_position_decay), as a re-fit of a pruned scene does, so that what the
     // settling keeps can move into the gaps it leaves; false keeps the reference's one decay.
     bool restart_decay = true;
-    uint64_t iterations = 30000;   // jobs sets it: the run's length, where the restarted decay ends
+    uint64_t iterations = 30000;   // the run's length (jobs sets it): the restarted decay and the rounds end there
     // The three together (peak 3, 3 rounds, restarted decay) against peak 2 and one settling, H100,
     // means of 3 runs (benchmarks/RESULTS.md): bonsai 80,000 29.99 dB against 29.66, 40,000
     // 28.69 (2 runs) against 28.33; lego 50,000 35.97 against 35.66. Each alone gained 0.05-0.19.
