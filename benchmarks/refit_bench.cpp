@@ -65,6 +65,10 @@ int main(int argc, char** argv) {
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
     std::string method = "blend";
     app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend");
+    uint64_t round_spacing = 0;
+    app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (default: an equal share)");
+    bool sampled = false;
+    app.add_flag("--sample", sampled, "keep a weighted random sample by score in every round, not the best-scored");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
@@ -158,7 +162,8 @@ int main(int argc, char** argv) {
             const prune::ScoreMethod score_method = prune::parse_score_method(method);
             if (score_method == prune::ScoreMethod::fisher)
                 throw InputError("--method fisher", "is scored on the CPU; refit_bench ranks from the GPU's totals");
-            const prune::Ranking ranking(prune::score(cloud, totals, score_method),
+            const std::vector<float> scores = prune::score(cloud, totals, score_method);
+            const prune::Ranking ranking(sampled ? prune::sampling_keys(scores, options.seed) : scores,
                                          prune::lossless_mask(totals));
             const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
             const double unpruned = quality(cloud).mean_psnr;
@@ -167,6 +172,8 @@ int main(int argc, char** argv) {
             recover.iterations = iterations;
             recover.seconds = seconds;
             recover.rounds = rounds;
+            recover.round_spacing = round_spacing;
+            recover.sampled = sampled;
             recover.method = score_method;
             recover.finetune = options;
             if (seconds)

@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
     app.add_option("--settle-spacing", recipe.budget.settle_spacing, "steps between settling rounds");
     app.add_option("--restart-decay", recipe.budget.restart_decay,
                    "true: the position rate decays afresh from the settling on (the default)");
+    app.add_flag("--budget-sampling", recipe.budget_sampling,
+                 "the budget recipe removes a weighted random sample by blend weight, not the least");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     bool deterministic = false;
     app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");

@@ -44,9 +44,12 @@ double dropped_share(size_t n, size_t kept) { return n == 0 ? 0.0 : 1.0 - double
 
 }  // namespace
 
-uint64_t round_iterations(uint64_t iterations, int round, int rounds) {
+uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t spacing) {
     const auto n = uint64_t(rounds), r = uint64_t(round);
-    return iterations / n + (r <= iterations % n ? 1 : 0);
+    if (spacing == 0 || n < 2) return iterations / n + (r <= iterations % n ? 1 : 0);
+    // Each earlier round keeps one step for every round after it.
+    const uint64_t early = std::max<uint64_t>(1, std::min(spacing, iterations / n));
+    return r < n ? early : iterations - early * (n - 1);
 }
 
 uint64_t default_recover_iterations(double dropped) {
@@ -103,7 +106,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
             finetune.seconds = std::max(round_seconds(*options.seconds - spent, round, options.rounds), 1e-3);
         } else {
             finetune.seconds.reset();
-            finetune.iterations = round_iterations(iterations, round, options.rounds);
+            finetune.iterations = round_iterations(iterations, round, options.rounds, options.round_spacing);
         }
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
                                     [&](const train::LoopStatus& s) {
@@ -115,7 +118,10 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         // The next round ranks the re-fitted model by its own contributions now.
         const prune::ViewTotals totals =
             prune::accumulate(renderer, model, cameras, train, settings, {}, prune::needs_fisher(options.method));
-        const prune::Ranking next(prune::score(model, totals, options.method), prune::lossless_mask(totals));
+        const std::vector<float> scores = prune::score(model, totals, options.method);
+        const prune::Ranking next(options.sampled ? prune::sampling_keys(scores, options.finetune.seed + uint64_t(round))
+                                                  : scores,
+                                  prune::lossless_mask(totals));
         model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, options.rounds)));
     }
     result.cloud = std::move(model);

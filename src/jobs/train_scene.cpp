@@ -25,6 +25,7 @@
 #include "stats/median.hpp"
 #include "vksplat/prune/accumulate.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/selection.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -88,10 +89,13 @@ train::Importance importance_over(const gpu::Context& context, const TrainingDat
     RenderSettings settings;
     settings.background = options.background;
     // A renderer of its own each time, so that its device memory is held only while it scores.
-    return [&context, settings, &data](const GaussianCloud& cloud) {
+    const bool sampling = options.recipe.budget_sampling;
+    return [&context, settings, &data, sampling, seed = options.seed](const GaussianCloud& cloud) {
         Renderer renderer(context);
         const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings);
-        return prune::score(cloud, totals, prune::ScoreMethod::blend);
+        std::vector<float> blend = prune::score(cloud, totals, prune::ScoreMethod::blend);
+        // Seeded by the count too, which differs between rounds and is the same in a resumed run.
+        return sampling ? prune::sampling_keys(blend, seed ^ (uint64_t(cloud.size()) << 20)) : blend;
     };
 }
 
@@ -132,7 +136,8 @@ std::string budget_text(const TrainRecipe& r) {
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
            std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
            ", settling " + std::to_string(b.settle_rounds) + " x " + std::to_string(b.settle_spacing) +
-           (b.restart_decay ? " restarting the decay" : "") + ", start " + std::to_string(r.start_fraction);
+           (b.restart_decay ? " restarting the decay" : "") + (r.budget_sampling ? ", sampling" : "") + ", start " +
+           std::to_string(r.start_fraction);
 }
 
 // What a training run's checkpoint belongs to: the starting Gaussians, the cameras (at the

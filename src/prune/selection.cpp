@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 #include <string>
 
@@ -52,6 +53,18 @@ KeepMask Ranking::keep_best(size_t count) const {
     const size_t n = std::min(count, order_.size());
     for (size_t k = 0; k < n; ++k) keep[order_[k]] = 1;
     return keep;
+}
+
+std::vector<float> sampling_keys(std::span<const float> scores, uint64_t seed) {
+    std::mt19937_64 bits(seed);
+    std::vector<float> keys(scores.size());
+    for (size_t i = 0; i < keys.size(); ++i) {
+        // 53 random bits, centred in their interval: u lies strictly inside (0, 1), so ln(u) < 0.
+        const double u = (double(bits() >> 11) + 0.5) * 0x1p-53;
+        const float w = scores[i];
+        keys[i] = std::isnan(w) ? w : w > 0 ? float(std::log(u) / double(w)) : -std::numeric_limits<float>::infinity();
+    }
+    return keys;
 }
 
 KeepMask select_threshold(std::span<const float> scores, float threshold, std::span<const uint8_t> candidates) {

@@ -26,7 +26,15 @@ struct RecoverOptions {
     // Refused with `iterations` set, and unless finite and above 0.
     std::optional<double> seconds;
     int rounds = 3;
+    // Iterations of each round but the last (0: an equal share of all). The budget recipe settles
+    // in rounds 1,000 steps apart and trains the kept Gaussians for the rest of its run; spacing
+    // does the same here, so that the last round, the one whose model is kept, re-fits longest.
+    uint64_t round_spacing = 0;
     prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
+    // Rounds after the first keep a weighted random sample of their Gaussians (prune::sampling_keys,
+    // seeded by finetune.seed and the round) instead of the best-scored; the first round's ranking
+    // is the caller's.
+    bool sampled = false;
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
 
     RecoverOptions() { finetune.train.position_schedule = train::PositionSchedule::decay; }
@@ -46,7 +54,9 @@ struct RecoverResult {
 size_t round_target(size_t n, size_t target, int round, int rounds);
 // The re-fit iterations of round r (1-based): `iterations` split as evenly as whole steps allow,
 // the first rounds taking one more where they do not divide, so that the rounds add up to it.
-uint64_t round_iterations(uint64_t iterations, int round, int rounds);
+// With `spacing` > 0, every round but the last takes that many (while iterations last: each round
+// at least one) and the last the rest.
+uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t spacing = 0);
 
 // The re-fit of one round that prunes `n` Gaussians to `kept`: options.finetune with the round's
 // iterations (options.iterations, else default_recover_iterations of the fraction dropped) or, with

@@ -50,6 +50,9 @@ struct TrainRecipe : train::ReferenceSchedule {
     // The budget recipe's growth and pruning; its budget is densify.max_gaussians and its start the
     // starting points, at most start_fraction x the budget of them (a seeded random subset).
     train::BudgetSchedule budget;
+    // The budget recipe removes a weighted random sample by blend weight (prune::sampling_keys,
+    // seeded by the run's seed and the count) rather than the least important: see sampling_keys.
+    bool budget_sampling = false;
     // The MCMC recipe's terms; its budget is densify.max_gaussians too, and it starts from the same
     // subset of the starting points.
     train::McmcSchedule mcmc;

@@ -48,6 +48,15 @@ private:
     size_t size_ = 0;
 };
 
+// Scores turned into keys whose ranking is a weighted random sample without replacement: ranked
+// by these keys, the best K are K Gaussians drawn one after another with probability proportional
+// to their score among those not drawn yet (Efraimidis and Spirakis 2006: key = ln(u) / score,
+// u uniform in (0, 1) from `seed`). Mini-Splatting (Fang and Wang 2024) simplifies a scene by
+// sampling on its importance rather than keeping the top: a region of many faint Gaussians keeps
+// a few of them instead of none, for the re-fit to grow. Scores <= 0 rank last, NaN below them;
+// the same seed gives the same keys on every platform (std::mt19937_64, no std:: distribution).
+std::vector<float> sampling_keys(std::span<const float> scores, uint64_t seed);
+
 KeepMask select_threshold(std::span<const float> scores, float threshold, std::span<const uint8_t> candidates);
 // Throws InputError for a ratio outside [0, 1] (or NaN).
 KeepMask select_ratio(std::span<const float> scores, double ratio, std::span<const uint8_t> candidates);
