@@ -6,10 +6,11 @@
 // split, and the device memory of the re-fit against the renderer's for the same scene.
 //
 //   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
-//   refit_bench lego.ply ... --drop 0.8 --rounds 2   (blend ranking, 80% dropped, two prune-re-fit rounds)
-//   refit_bench lego.ply ... --drop 0.8 --rounds 3 --position-lr decay   (iterations by the fraction dropped,
-//     as a bare `prune --recover` takes them: jobs::default_recover_iterations)
-//   refit_bench lego.ply ... --drop 0.8 --rounds 3 --position-lr decay --seconds 60   (a wall-time budget,
+//   refit_bench lego.ply ... --drop 0.8 --position-lr decay   (blend ranking, 80% dropped, prune --recover's
+//     rounds, their spacing and sampling (jobs::RecoverOptions), iterations by the fraction dropped, as a
+//     bare `prune --recover` takes them: jobs::default_recover_iterations)
+//   refit_bench lego.ply ... --drop 0.8 --rounds 3 --round-spacing 0 --sample false   (the schedule before)
+//   refit_bench lego.ply ... --drop 0.8 --position-lr decay --seconds 60   (a wall-time budget,
 //     `prune --recover-seconds 60`), --lr sh_dc=0.5 --lr opacity=0.5 (rates times a factor)
 //   refit_bench bonsai.spz ... --keep keep85.npy --subject --save refit.ply
 //     (what `vksplat cluster prune --recover N` re-fits: the Gaussians the mask keeps, the loss of each
@@ -46,7 +47,8 @@ int main(int argc, char** argv) {
     std::optional<uint64_t> iterations;  // unset: 5000, or with --drop by the fraction dropped
     std::optional<double> drop, seconds;
     std::vector<std::string> rate_factors;
-    int rounds = 1;
+    const jobs::RecoverOptions recover_defaults;
+    int rounds = recover_defaults.rounds;
     std::string position_lr = "final";
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
@@ -62,13 +64,13 @@ int main(int argc, char** argv) {
         });
     app.add_option("--device", device);
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
-    app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop)");
+    app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop; default: prune --recover's)");
     std::string method = "blend";
     app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend");
-    uint64_t round_spacing = 0;
-    app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (default: an equal share)");
-    bool sampled = false;
-    app.add_flag("--sample", sampled, "keep a weighted random sample by score in every round, not the best-scored");
+    uint64_t round_spacing = recover_defaults.round_spacing;
+    app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (0: an equal share)");
+    bool sampled = recover_defaults.sampled;
+    app.add_option("--sample", sampled, "true: keep a weighted random sample by score in every round, not the best-scored");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
@@ -163,11 +165,9 @@ int main(int argc, char** argv) {
             if (score_method == prune::ScoreMethod::fisher)
                 throw InputError("--method fisher", "is scored on the CPU; refit_bench ranks from the GPU's totals");
             const std::vector<float> scores = prune::score(cloud, totals, score_method);
-            const prune::Ranking ranking(sampled ? prune::sampling_keys(scores, options.seed) : scores,
-                                         prune::lossless_mask(totals));
+            const prune::KeepMask candidates = prune::lossless_mask(totals);
             const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
             const double unpruned = quality(cloud).mean_psnr;
-            const double pruned = quality(cloud.subset(ranking.keep_best(keep))).mean_psnr;
             jobs::RecoverOptions recover;
             recover.iterations = iterations;
             recover.seconds = seconds;
@@ -176,6 +176,8 @@ int main(int argc, char** argv) {
             recover.sampled = sampled;
             recover.method = score_method;
             recover.finetune = options;
+            const double pruned =
+                quality(cloud.subset(jobs::recover_ranking(scores, candidates, recover, 1).keep_best(keep))).mean_psnr;
             if (seconds)
                 std::printf("a budget of %g s over %d rounds\n", *seconds, rounds);
             else
@@ -183,7 +185,7 @@ int main(int argc, char** argv) {
                             static_cast<unsigned long long>(iterations.value_or(
                                 jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())))),
                             rounds, iterations ? "" : " (by the fraction dropped)");
-            const auto recovered = jobs::prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos,
+            const auto recovered = jobs::prune_and_recover(context, renderer, cloud, scores, candidates, keep, cameras, photos,
                                                            recover, quality, [&](int, const train::LoopStatus& s) {
                                                                report(s);
                                                            });

@@ -312,7 +312,8 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
     const SavedClusterScores saved = load_cluster_scores(cloud.size(), io);
     const cluster::ClusterSelection selection = cluster::select_clusters(saved.scores, saved.cluster_of, options.selection);
     for (const auto& warning : selection.warnings) say(io.log, "warning: " + warning);
-    const prune::Ranking ranking(cluster::gaussian_scores(saved.scores, saved.cluster_of), prune::keep_all(cloud.size()));
+    const std::vector<float> ranked_by = cluster::gaussian_scores(saved.scores, saved.cluster_of);
+    const prune::KeepMask every = prune::keep_all(cloud.size());
 
     ClusterRecoverResult result;
     std::map<size_t, std::vector<uint8_t>> masks;
@@ -327,8 +328,10 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
         finetune.loss_masks = [&masks](size_t view) { return masks.at(view); };
         result.masked_views = masks.size();
     }
+    // The clusters chosen go whole, once: no sampling inside them, no second round.
     recover.rounds = 1;
-    result.recover = prune_and_recover(context, renderer, cloud, ranking, selection.gaussians_kept, cameras, photos,
+    recover.sampled = false;
+    result.recover = prune_and_recover(context, renderer, cloud, ranked_by, every, selection.gaussians_kept, cameras, photos,
                                        recover, {}, [&](int, const train::LoopStatus& s) {
                                            if (progress) progress(s);
                                        });

@@ -64,7 +64,10 @@ uint64_t default_recover_iterations(double dropped) {
     return uint64_t(kKnots.back().second);
 }
 
-double round_seconds(double remaining, int round, int rounds) { return remaining / double(rounds - round + 1); }
+double round_seconds(double remaining, int round, int rounds, bool spaced) {
+    const double equal = remaining / double(rounds - round + 1);
+    return spaced && round < rounds ? std::min(equal, kSpacedRoundShare * remaining) : equal;
+}
 
 FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept) {
     FinetuneOptions finetune = options.finetune;
@@ -80,8 +83,15 @@ void check_recover(const RecoverOptions& options, const std::vector<Camera>& cam
         checked_photo(photos, cameras[view]);
 }
 
+prune::Ranking recover_ranking(std::span<const float> scores, std::span<const uint8_t> candidates,
+                               const RecoverOptions& options, int round) {
+    if (!options.sampled) return prune::Ranking(scores, candidates);
+    return prune::Ranking(prune::sampling_keys(scores, options.finetune.seed + uint64_t(round)), candidates);
+}
+
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
-                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
+                                std::span<const float> scores, std::span<const uint8_t> candidates, size_t keep,
+                                const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options, const QualityProbe& quality,
                                 const std::function<void(int round, const train::LoopStatus&)>& progress) {
     check_rounds(options);
@@ -94,7 +104,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
     const auto start = std::chrono::steady_clock::now();
     const uint64_t iterations = options.iterations.value_or(default_recover_iterations(dropped_share(cloud.size(), keep)));
     RecoverResult result;
-    GaussianCloud model = cloud.subset(ranking.keep_best(round_target(cloud.size(), keep, 1, options.rounds)));
+    const prune::Ranking first = recover_ranking(scores, candidates, options, 1);
+    GaussianCloud model = cloud.subset(first.keep_best(round_target(cloud.size(), keep, 1, options.rounds)));
     for (int round = 1;; ++round) {
         RecoverRound done;
         done.kept = model.size();
@@ -103,7 +114,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         if (options.seconds) {
             const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             // A round the earlier ones left no time still takes its one step (planned_iterations).
-            finetune.seconds = std::max(round_seconds(*options.seconds - spent, round, options.rounds), 1e-3);
+            finetune.seconds = std::max(round_seconds(*options.seconds - spent, round, options.rounds, options.round_spacing > 0), 1e-3);
         } else {
             finetune.seconds.reset();
             finetune.iterations = round_iterations(iterations, round, options.rounds, options.round_spacing);
@@ -118,10 +129,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         // The next round ranks the re-fitted model by its own contributions now.
         const prune::ViewTotals totals =
             prune::accumulate(renderer, model, cameras, train, settings, {}, prune::needs_fisher(options.method));
-        const std::vector<float> scores = prune::score(model, totals, options.method);
-        const prune::Ranking next(options.sampled ? prune::sampling_keys(scores, options.finetune.seed + uint64_t(round))
-                                                  : scores,
-                                  prune::lossless_mask(totals));
+        const prune::Ranking next = recover_ranking(prune::score(model, totals, options.method),
+                                                    prune::lossless_mask(totals), options, round + 1);
         model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, options.rounds)));
     }
     result.cloud = std::move(model);

@@ -174,7 +174,7 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         return prune::fit_refitted(chosen, refitted, chosen_scores, *size);
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
-    RecoverResult recovered = prune_and_recover(context, renderer, cloud, ranking, keep, cameras, photos, recover,
+    RecoverResult recovered = prune_and_recover(context, renderer, cloud, scored.scores, scored.candidates, keep, cameras, photos, recover,
                                                 {}, report);
     for (const auto& round : recovered.rounds)
         result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});

@@ -173,13 +173,17 @@ jobs::RecoverOptions recover_schedule(const SweepResult& result, const SweepOpti
     return recover;
 }
 
-// The row of `pruned` (cut from `ranking` at `keep`) re-fitted with prune --recover's schedule.
-SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, const prune::Ranking& ranking, size_t keep,
+// The row of `pruned` (cut at `keep` from the ranking of `scores`) re-fitted with prune --recover's
+// schedule, which ranks the same scores its own way (jobs::recover_ranking).
+SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, std::span<const float> scores,
+                     std::span<const uint8_t> candidates, size_t keep,
                      const std::string& method, const SweepRow& pruned, const std::vector<Camera>& cameras,
                      const jobs::PhotoSource& photos, const Targets& targets, const SweepResult& result,
                      const SweepOptions& options, Reporter& reporter) {
     jobs::RecoverOptions recover = recover_schedule(result, options);
     recover.method = method == kClusterMethod ? prune::ScoreMethod::blend : prune::parse_score_method(method);
+    // Cluster scores rank whole clusters: the first round cuts them whole, as cluster pruning does.
+    if (method == kClusterMethod) recover.sampled = false;
     // One stage per re-fit, its iterations counted over all its rounds.
     const std::string stage = "re-fit of " + method + " at " + fraction_label(pruned.fraction) + " dropped";
     const uint64_t iterations = options.recover_iterations;
@@ -195,7 +199,8 @@ SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, const prune
     reporter.clock.begin(Work::refit_iteration);
     const auto start = std::chrono::steady_clock::now();
     const jobs::RecoverResult refit =
-        jobs::prune_and_recover(renderer.context(), renderer, cloud, ranking, std::min(keep, ranking.candidates()),
+        jobs::prune_and_recover(renderer.context(), renderer, cloud, scores, candidates,
+                                std::min(keep, prune::count_kept(candidates)),
                                 cameras, photos, recover, {}, refit_progress);
     SweepRow row = pruned;
     row.method = method + kRecoverSuffix;
@@ -347,7 +352,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
     // Every fraction the lossless pass alone covers keeps the same model, whatever the method.
     std::optional<ModelMeasure> lossless_only;
     const size_t total_rows = (methods.size() + (options.cluster ? 1 : 0)) * fractions.size();
-    const auto sweep_ranking = [&](const std::string& method, const prune::Ranking& ranking) {
+    const auto sweep_ranking = [&](const std::string& method, const std::vector<float>& scores) {
+        const prune::Ranking ranking(scores, candidates);
         std::vector<SweepRow> recovered;
         for (double fraction : fractions) {
             reporter.step("sweep", result.rows.size(), total_rows);
@@ -374,7 +380,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             result.rows.push_back(row);
             if (progress.row) progress.row(result.rows.back());
             if (photos && fraction > 0) {
-                recovered.push_back(recover_row(renderer, cloud, ranking, keep, method, row, cameras, *photos, targets,
+                recovered.push_back(recover_row(renderer, cloud, scores, candidates, keep, method, row, cameras, *photos, targets,
                                                 result, options, reporter));
                 if (progress.row) progress.row(recovered.back());
             }
@@ -382,8 +388,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
         result.rows.insert(result.rows.end(), recovered.begin(), recovered.end());
     };
     for (prune::ScoreMethod method : methods)
-        sweep_ranking(std::string(prune::to_string(method)),
-                      prune::Ranking(prune::score(cloud, totals, method, options.seed), candidates));
+        sweep_ranking(std::string(prune::to_string(method)), prune::score(cloud, totals, method, options.seed));
     std::vector<float> cluster_scores;
     if (options.cluster) {
         reporter.step("cluster pruning's stages", 0, 1);
@@ -396,7 +401,7 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
         result.cluster_seconds = seconds_since(cluster_start);
         reporter.clock.advance(double(cluster_region_views(cluster)));
         reporter.step("cluster pruning's stages", 1, 1);
-        sweep_ranking(kClusterMethod, prune::Ranking(cluster_scores, candidates));
+        sweep_ranking(kClusterMethod, cluster_scores);
     }
     reporter.step("sweep", total_rows, total_rows);
 

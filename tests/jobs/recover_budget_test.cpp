@@ -53,6 +53,17 @@ TEST(RoundSeconds, ShareWhatIsLeftSoThatOverrunsComeOutOfLaterRounds) {
     EXPECT_NEAR(left, 0, 1e-9);
 }
 
+// Spaced rounds: each before the last takes at most kSpacedRoundShare of what is left, the last
+// all of it, and the rounds still end with the budget.
+TEST(RoundSeconds, SpacedRoundsLeaveMostOfTheTimeToTheLast) {
+    EXPECT_DOUBLE_EQ(jobs::round_seconds(60, 1, 5, true), 60 * jobs::kSpacedRoundShare);
+    EXPECT_DOUBLE_EQ(jobs::round_seconds(40, 5, 5, true), 40);
+    EXPECT_DOUBLE_EQ(jobs::round_seconds(1, 1, 2, true), 0.05);
+    double left = 60;
+    for (int round = 1; round <= 5; ++round) left -= jobs::round_seconds(left, round, 5, true);
+    EXPECT_NEAR(left, 0, 1e-9);
+}
+
 TEST(PlannedIterations, FillTheBudgetAtTheTimedStep) {
     EXPECT_EQ(jobs::planned_iterations(10, 0.0005), 20000u);
     EXPECT_EQ(jobs::planned_iterations(10, 3), 3u);
@@ -129,13 +140,13 @@ TEST_F(RecoverBudget, ATimeBudgetEndsTheRefitInsteadOfItsIterationCount) {
 
 TEST_F(RecoverBudget, TheRoundsShareOneBudget) {
     const prune::ViewTotals totals = prune::accumulate(renderer, truth, cameras, {1, 2, 3, 4}, RenderSettings{});
-    const prune::Ranking ranking(prune::score(truth, totals, prune::ScoreMethod::blend), prune::lossless_mask(totals));
+    const std::vector<float> scores = prune::score(truth, totals, prune::ScoreMethod::blend);
     jobs::RecoverOptions recover;
     recover.seconds = 3;
     recover.rounds = 3;
     recover.finetune = options;
     const auto start = std::chrono::steady_clock::now();
-    const jobs::RecoverResult result = jobs::prune_and_recover(context(), renderer, truth, ranking, truth.size() / 5,
+    const jobs::RecoverResult result = jobs::prune_and_recover(context(), renderer, truth, scores, prune::lossless_mask(totals), truth.size() / 5,
                                                                cameras, photos, recover);
     const double seconds = seconds_since(start);
     ASSERT_EQ(result.rounds.size(), 3u);

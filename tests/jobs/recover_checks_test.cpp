@@ -96,6 +96,24 @@ TEST(RoundIterations, AddUpToTheIterationsAskedFor) {
     }
 }
 
+// With a spacing, the rounds before the last take it and the last the rest, still adding up, and
+// a run too short for the spacing still gives every round a step.
+TEST(RoundIterations, SpacedRoundsLeaveTheRestToTheLast) {
+    EXPECT_EQ(jobs::round_iterations(30000, 1, 3, 1000), 1000u);
+    EXPECT_EQ(jobs::round_iterations(30000, 2, 3, 1000), 1000u);
+    EXPECT_EQ(jobs::round_iterations(30000, 3, 3, 1000), 28000u);
+    EXPECT_EQ(jobs::round_iterations(30000, 1, 1, 1000), 30000u);
+    for (const auto& [iterations, rounds] : {std::pair<uint64_t, int>{5000, 3}, {7, 7}, {10, 1}, {101, 4}, {2500, 3}}) {
+        uint64_t sum = 0;
+        for (int round = 1; round <= rounds; ++round) {
+            const uint64_t steps = jobs::round_iterations(iterations, round, rounds, 1000);
+            EXPECT_GE(steps, 1u) << iterations << " over " << rounds << ", round " << round;
+            sum += steps;
+        }
+        EXPECT_EQ(sum, iterations) << iterations << " over " << rounds;
+    }
+}
+
 TEST_F(RecoverChecks, TheRoundsTakeExactlyTheIterationsAskedFor) {
     auto options = recover_options();
     options.recover->iterations = 7;

@@ -29,7 +29,7 @@ struct PruneArgs {
     uint64_t seed = 0;
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
     std::optional<double> recover_seconds;
-    std::optional<int> rounds;  // default: 3, or 1 with a quality budget (which re-fits each probe once)
+    std::optional<int> rounds;  // default: jobs::RecoverOptions's, or 1 with a quality budget (which re-fits each probe once)
     std::string position_lr = "decay";
     bool force = false;
     GradientSumsArgs sums;
@@ -232,9 +232,10 @@ void register_prune(CLI::App& app, Action& action) {
                         "re-fit (as --recover does) for S seconds of wall time in all, shared by the rounds,\n"
                         "instead of a count of iterations (with --max-psnr-drop: each probe's re-fit)");
     auto* rounds = command->add_option("--rounds", args->rounds,
-                                       "with --recover: prune and re-fit in R rounds (default 3; 1 with --max-psnr-drop\n"
+                                       "with --recover: prune and re-fit in R rounds (default 5; 1 with --max-psnr-drop\n"
                                        "or --max-mb), each dropping a geometrically growing share, ranked on the\n"
-                                       "re-fitted model")
+                                       "re-fitted model and kept as a weighted sample by score; every round but the\n"
+                                       "last re-fits 1,000 iterations, the last the rest")
                        ->check(count_in(1, 100));
     auto* position_lr = command->add_option("--position-lr", args->position_lr,
                                             "with --recover: decay (default) the position rate from its initial to\n"

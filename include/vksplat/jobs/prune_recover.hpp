@@ -6,6 +6,7 @@
 #include <cstddef>
 #include <functional>
 #include <optional>
+#include <span>
 #include <vector>
 
 #include "vksplat/jobs/finetune.hpp"
@@ -14,9 +15,11 @@
 
 namespace vksplat::jobs {
 
-// The defaults are the best of the schedules measured on lego and snowmiku (benchmarks/RESULTS.md):
-// three rounds, each re-fit decaying the position rate from its initial to its final value. At
-// 80% of lego dropped that loses 1.69 dB where one round at the final rate loses 2.85.
+// The defaults are the best of the schedules measured (benchmarks/RESULTS.md, issue 30): five
+// rounds, four of them 1,000 steps each and the last re-fitting for the rest, each keeping a
+// weighted sample by blend weight, each re-fit decaying the position rate from its initial to its
+// final value. H200, bonsai / lego, one run each: 80% dropped -0.354 / -0.678 dB where three equal
+// rounds keeping the best lost -0.564 / -0.940; 90% dropped -1.636 / -2.773 against -2.017 / -3.124.
 struct RecoverOptions {
     // Re-fit iterations in all, split over the rounds (round_iterations); unset: as many as
     // default_recover_iterations gives for the fraction dropped.
@@ -25,16 +28,17 @@ struct RecoverOptions {
     // rounds (round_seconds), each round's share turned into steps by FinetuneOptions::seconds.
     // Refused with `iterations` set, and unless finite and above 0.
     std::optional<double> seconds;
-    int rounds = 3;
+    int rounds = 5;
     // Iterations of each round but the last (0: an equal share of all). The budget recipe settles
     // in rounds 1,000 steps apart and trains the kept Gaussians for the rest of its run; spacing
-    // does the same here, so that the last round, the one whose model is kept, re-fits longest.
-    uint64_t round_spacing = 0;
+    // does the same here, so that the last round, the one whose model is kept, re-fits longest
+    // (bonsai 80%, 3 rounds: -0.408 dB at 1,000 and -0.411 at 2,000 against -0.564 equal).
+    uint64_t round_spacing = 1000;
     prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
-    // Rounds after the first keep a weighted random sample of their Gaussians (prune::sampling_keys,
-    // seeded by finetune.seed and the round) instead of the best-scored; the first round's ranking
-    // is the caller's.
-    bool sampled = false;
+    // Every round keeps a weighted random sample of its Gaussians by score (recover_ranking)
+    // instead of the best-scored (bonsai, spaced: 80% -0.380 against -0.408, 90% -1.642 against
+    // -1.793; 8 rounds lost more than 5 at 80%, -0.493).
+    bool sampled = true;
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
 
     RecoverOptions() { finetune.train.position_schedule = train::PositionSchedule::decay; }
@@ -74,7 +78,10 @@ uint64_t default_recover_iterations(double dropped);
 // The seconds round r (1-based) of `rounds` may take when `remaining` seconds of the budget are
 // left as it starts: an equal share of what is left, so that time the earlier rounds overran (or
 // the scoring between rounds took) comes out of the later ones and the whole stays in the budget.
-double round_seconds(double remaining, int round, int rounds);
+// Spaced rounds (RecoverOptions::round_spacing > 0) are short but for the last: each earlier one
+// takes at most kSpacedRoundShare of what is left (a time budget cannot count their steps ahead).
+inline constexpr double kSpacedRoundShare = 0.05;
+double round_seconds(double remaining, int round, int rounds, bool spaced = false);
 
 // What prune_and_recover would refuse, found without its work: rounds < 1, a resume of several
 // rounds, no iterations per round, a time budget that is not a positive number of seconds or comes
@@ -83,10 +90,16 @@ double round_seconds(double remaining, int round, int rounds);
 // a real scene, so that a bad photo is not found only after.
 void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos);
 
-// `ranking` ranks the Gaussians of `cloud` (the unpruned model) for the first round; `keep` is
-// the final count. Throws InputError for what check_recover refuses.
+// How a round ranks its model's Gaussians from their scores and candidates: by score, or with
+// options.sampled by prune::sampling_keys seeded by finetune.seed and the round (1-based).
+prune::Ranking recover_ranking(std::span<const float> scores, std::span<const uint8_t> candidates,
+                               const RecoverOptions& options, int round);
+
+// `scores` and `candidates` rank the Gaussians of `cloud` (the unpruned model) for the first round
+// (recover_ranking); `keep` is the final count. Throws InputError for what check_recover refuses.
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,
-                                const prune::Ranking& ranking, size_t keep, const std::vector<Camera>& cameras,
+                                std::span<const float> scores, std::span<const uint8_t> candidates, size_t keep,
+                                const std::vector<Camera>& cameras,
                                 const PhotoSource& photos, const RecoverOptions& options,
                                 const QualityProbe& quality = {},
                                 const std::function<void(int round, const train::LoopStatus&)>& progress = {});
