@@ -63,6 +63,8 @@ int main(int argc, char** argv) {
             if (text.find('=') == std::string::npos) throw CLI::ValidationError("--lr", "wants GROUP=F");
         });
     app.add_option("--device", device);
+    uint64_t seed = 0;
+    app.add_option("--seed", seed, "the order of the training views and the rounds' samples (FinetuneOptions::seed)");
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop; default: prune --recover's)");
     std::string method = "blend";
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
         const auto cameras = io::read_cameras(cameras_path);
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         jobs::FinetuneOptions options;
+        options.seed = seed;
         options.iterations = iterations.value_or(options.iterations);
         options.seconds = seconds;
         for (const std::string& text : rate_factors) {
