@@ -126,26 +126,28 @@ struct Replay {
 
 // Replays one splat the pixel blended (its list position below pixel.last): steps `replay` to the
 // front of it and gives the derivatives of the pixel's loss as `grad`. The one formula of both forms.
-void replay_splat(vec2 mean, vec4 conic_o, vec3 color, PixelBackward pixel, inout Replay replay,
+// False where the blend skipped the splat at this pixel (alpha < 1/255): `grad` is zero then.
+bool replay_splat(vec2 mean, vec4 conic_o, vec3 color, PixelBackward pixel, inout Replay replay,
                   out SplatGradient grad) {
     grad = NO_GRADIENT;
     const vec2 d = mean - pixel.pixel;
     const float power = -0.5 * (conic_o.x * d.x * d.x + conic_o.z * d.y * d.y) - conic_o.y * d.x * d.y;
-    if (power > 0.0) return;
+    if (power > 0.0) return false;
     const float g = exp(power);
     const float unclamped = conic_o.w * g;
     const float alpha = min(MAX_ALPHA, unclamped);
-    if (alpha < MIN_ALPHA) return;
+    if (alpha < MIN_ALPHA) return false;
     replay.t /= 1.0 - alpha;
     grad.color = alpha * replay.t * pixel.dl_dpixel;
     const float dl_dalpha =
         dot(color - replay.behind, pixel.dl_dpixel) * replay.t - pixel.final_t / (1.0 - alpha) * pixel.background_grad;
     replay.behind = alpha * color + (1.0 - alpha) * replay.behind;
-    if (unclamped >= MAX_ALPHA) return;
+    if (unclamped >= MAX_ALPHA) return true;
     grad.opacity = g * dl_dalpha;
     const float dl_dpower = conic_o.w * g * dl_dalpha;
     grad.mean = dl_dpower * vec2(-conic_o.x * d.x - conic_o.y * d.y, -conic_o.y * d.x - conic_o.z * d.y);
     grad.conic = dl_dpower * vec3(-0.5 * d.x * d.x, -d.x * d.y, -0.5 * d.y * d.y);
+    return true;
 }
 
 #if PER_SPLAT
@@ -300,7 +302,11 @@ void main() {
             // Whole subgroups skip splats none of their pixels blended (most, for small splats).
             if (!subgroupAny(walked)) continue;
             SplatGradient grad = NO_GRADIENT;
-            if (walked) replay_splat(batch_mean[j].xy, batch_conic_opacity[j], batch_color[j].rgb, me, replay, grad);
+            const bool blended =
+                walked && replay_splat(batch_mean[j].xy, batch_conic_opacity[j], batch_color[j].rgb, me, replay, grad);
+            // Nor do they reduce gradients that are zero on every lane: the splat's ellipse missed
+            // their pixels, or was too faint there, though its bounds touched their block.
+            if (!subgroupAny(blended)) continue;
             grad.mean = subgroupAdd(grad.mean);
             grad.conic = subgroupAdd(grad.conic);
             grad.color = subgroupAdd(grad.color);
