@@ -18,8 +18,9 @@ namespace vksplat::jobs {
 // The defaults are the best of the schedules measured (benchmarks/RESULTS.md, issue 30): five
 // rounds, four of them 1,000 steps each and the last re-fitting for the rest, each keeping a
 // weighted sample by blend weight, each re-fit decaying the position rate from its initial to its
-// final value. H200, bonsai / lego, one run each: 80% dropped -0.354 / -0.678 dB where three equal
-// rounds keeping the best lost -0.564 / -0.940; 90% dropped -1.636 / -2.773 against -2.017 / -3.124.
+// final value. H200, bonsai / lego, means of 3 seeds: 80% dropped -0.413 / -0.666 dB where three
+// equal rounds keeping the best lost -0.564 / -0.940 (one run); 90% -1.637 / -2.749 against
+// -2.017 / -3.124.
 struct RecoverOptions {
     // Re-fit iterations in all, split over the rounds (round_iterations); unset: as many as
     // default_recover_iterations gives for the fraction dropped.
@@ -36,8 +37,9 @@ struct RecoverOptions {
     uint64_t round_spacing = 1000;
     prune::ScoreMethod method = prune::ScoreMethod::blend;  // the ranking of rounds after the first
     // Every round keeps a weighted random sample of its Gaussians by score (recover_ranking)
-    // instead of the best-scored (bonsai, spaced: 80% -0.380 against -0.408, 90% -1.642 against
-    // -1.793; 8 rounds lost more than 5 at 80%, -0.493).
+    // instead of the best-scored (bonsai, 3 spaced rounds: 80% -0.380 against -0.408, 90% -1.642
+    // against -1.793, one run each; over seeds the 80% result spreads by 0.14 dB; 8 rounds lost
+    // more than 5 at 80%, -0.493).
     bool sampled = true;
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
 
