@@ -53,6 +53,7 @@
 #extension GL_KHR_shader_subgroup_basic : require
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_vote : require
+#extension GL_KHR_shader_subgroup_ballot : require
 #if FLOAT_ATOMICS
 #extension GL_EXT_shader_atomic_float : require
 #endif
@@ -305,8 +306,14 @@ void main() {
             const bool blended =
                 walked && replay_splat(batch_mean[j].xy, batch_conic_opacity[j], batch_color[j].rgb, me, replay, grad);
             // Nor do they reduce gradients that are zero on every lane: the splat's ellipse missed
-            // their pixels, or was too faint there, though its bounds touched their block.
-            if (!subgroupAny(blended)) continue;
+            // their pixels, or was too faint there, though its bounds touched their block. Where
+            // one lane blended it, that lane's gradient is the sum: it adds it without reductions.
+            const uint blending = subgroupBallotBitCount(subgroupBallot(blended));
+            if (blending == 0u) continue;
+            if (blending == 1u) {
+                if (blended) add_splat_gradient(batch_gaussian[j], grad);
+                continue;
+            }
             grad.mean = subgroupAdd(grad.mean);
             grad.conic = subgroupAdd(grad.conic);
             grad.color = subgroupAdd(grad.color);
