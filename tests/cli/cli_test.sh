@@ -375,6 +375,17 @@ expect prune-recover-seconds-and-count 2 "--recover-seconds 5: is a budget inste
   --recover-seconds 5 --images "$work/photos3" -o "$work/recover_seconds_both.ply"
 expect prune-rounds-need-recover any-failure "--rounds requires --recover or --recover-seconds" -- "$vksplat" prune \
   "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --rounds 2 -o "$work/rounds_only.ply"
+expect prune-round-keep-needs-recover any-failure "--round-keep requires --recover or --recover-seconds" -- "$vksplat" \
+  prune "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --round-keep best \
+  -o "$work/round_keep_only.ply"
+expect prune-round-keep-unknown any-failure "--round-keep: top not in {sample,best}" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 --round-keep top \
+  --images "$work/photos3" -o "$work/round_keep_top.ply"
+# --round-spacing sets the early rounds' iterations (here 1 of 6, the last round the other 5), and
+# --round-keep best keeps the best-scored instead of a sample (the schedule before issue 30's change).
+expect prune-recover-spaced-best 0 "round 2: pruned to 19302 Gaussians and re-fitted, 5 iterations" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 --rounds 2 \
+  --round-spacing 1 --round-keep best --images "$work/photos3" --background 1,1,1 -o "$work/recovered_spaced_best.ply"
 expect finetune-seconds-and-iters 2 "--seconds: is a budget instead of an iteration count" -- "$vksplat" finetune \
   "$work/demo/demo.ply" --cameras "$work/three.json" --images "$work/photos3" --iters 5 --seconds 5 \
   -o "$work/refit_both.ply"

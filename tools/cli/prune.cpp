@@ -30,6 +30,8 @@ struct PruneArgs {
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
     std::optional<double> recover_seconds;
     std::optional<int> rounds;  // default: jobs::RecoverOptions's, or 1 with a quality budget (which re-fits each probe once)
+    uint64_t round_spacing = jobs::RecoverOptions{}.round_spacing;
+    std::string round_keep = "sample";
     std::string position_lr = "decay";
     bool force = false;
     GradientSumsArgs sums;
@@ -119,6 +121,9 @@ int run_prune(const PruneArgs& args) {
         const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector) ||
                             std::holds_alternative<prune::SizeBudget>(options.selector);
         recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
+        recover.round_spacing = args.round_spacing;
+        recover.sampled = args.round_keep == "sample";
+        recover.finetune.seed = args.seed;
         if (args.position_lr == "final") recover.finetune.train.position_schedule = train::PositionSchedule::final_rate;
         options.recover = recover;
     }
@@ -217,7 +222,10 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
         ->check(CLI::ExistingFile);
-    command->add_option("--seed", args->seed, "seed of the random method")->check(count_in(0));
+    command->add_option("--seed", args->seed,
+                        "seed of the random method, and with --recover of the training views' order and the\n"
+                        "rounds' samples")
+        ->check(count_in(0));
     // "auto" is what a bare --recover reads: CLI11 checks the value it stands for like a given one.
     auto* recover = command->add_option("--recover", args->recover,
                         "re-fit the kept Gaussians to the photos (needs --images) for N iterations, without N\n"
@@ -237,6 +245,14 @@ void register_prune(CLI::App& app, Action& action) {
                                        "re-fitted model and kept as a weighted sample by score; every round but the\n"
                                        "last re-fits 1,000 iterations, the last the rest")
                        ->check(count_in(1, 100));
+    auto* round_spacing = command->add_option("--round-spacing", args->round_spacing,
+                                              "with --recover: iterations of every round but the last (default 1000;\n"
+                                              "0: the rounds share the iterations or seconds equally)")
+                              ->check(count_in(0));
+    auto* round_keep = command->add_option("--round-keep", args->round_keep,
+                                           "with --recover: each round keeps a weighted random sample by score\n"
+                                           "(sample, the default) or the best-scored (best)")
+                           ->check(CLI::IsMember({"sample", "best"}));
     auto* position_lr = command->add_option("--position-lr", args->position_lr,
                                             "with --recover: decay (default) the position rate from its initial to\n"
                                             "its final value in each re-fit, or keep it at the final value")
@@ -247,8 +263,9 @@ void register_prune(CLI::App& app, Action& action) {
     command->add_option("-o,--out", args->out, "pruned scene (.ply, .compressed.ply, .splat or .spz)")->required();
     command->add_flag("--force", args->force, "overwrite existing output files");
     add_gpu_options(*command, args->gpu);
-    command->callback([&action, args, recover, recover_seconds, rounds, position_lr, deterministic, fast_sums] {
-        for (const CLI::Option* option : {rounds, position_lr, deterministic, fast_sums})
+    command->callback([&action, args, recover, recover_seconds, rounds, round_spacing, round_keep, position_lr,
+                       deterministic, fast_sums] {
+        for (const CLI::Option* option : {rounds, round_spacing, round_keep, position_lr, deterministic, fast_sums})
             if (option->count() && !recover->count() && !recover_seconds->count())
                 throw CLI::RequiresError(option->get_name(), "--recover or --recover-seconds");
         action = [args] { return run_prune(*args); };
