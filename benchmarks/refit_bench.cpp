@@ -72,7 +72,8 @@ int main(int argc, char** argv) {
     uint64_t round_spacing = recover_defaults.round_spacing;
     app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (0: an equal share)");
     bool sampled = recover_defaults.sampled;
-    app.add_option("--sample", sampled, "true: keep a weighted random sample by score in every round, not the best-scored");
+    app.add_option("--sample", sampled,
+                   "true: keep a weighted random sample by score in every round, not the best-scored");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
@@ -188,8 +189,8 @@ int main(int argc, char** argv) {
                             static_cast<unsigned long long>(iterations.value_or(
                                 jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())))),
                             rounds, iterations ? "" : " (by the fraction dropped)");
-            const auto recovered = jobs::prune_and_recover(context, renderer, cloud, scores, candidates, keep, cameras, photos,
-                                                           recover, quality, [&](int, const train::LoopStatus& s) {
+            const auto recovered = jobs::prune_and_recover(context, renderer, cloud, scores, candidates, keep, cameras,
+                                                           photos, recover, quality, [&](int, const train::LoopStatus& s) {
                                                                report(s);
                                                            });
             for (size_t r = 0; r < recovered.rounds.size(); ++r)

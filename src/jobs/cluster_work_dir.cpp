@@ -331,8 +331,8 @@ ClusterRecoverResult recover_stage(const gpu::Context& context, Renderer& render
     // The clusters chosen go whole, once: no sampling inside them, no second round.
     recover.rounds = 1;
     recover.sampled = false;
-    result.recover = prune_and_recover(context, renderer, cloud, ranked_by, every, selection.gaussians_kept, cameras, photos,
-                                       recover, {}, [&](int, const train::LoopStatus& s) {
+    result.recover = prune_and_recover(context, renderer, cloud, ranked_by, every, selection.gaussians_kept, cameras,
+                                       photos, recover, {}, [&](int, const train::LoopStatus& s) {
                                            if (progress) progress(s);
                                        });
     const GaussianCloud& refitted = result.recover.cloud;

@@ -47,7 +47,8 @@ double dropped_share(size_t n, size_t kept) { return n == 0 ? 0.0 : 1.0 - double
 uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t spacing) {
     const auto n = uint64_t(rounds), r = uint64_t(round);
     if (spacing == 0 || n < 2) return iterations / n + (r <= iterations % n ? 1 : 0);
-    // Each earlier round keeps one step for every round after it.
+    // At most an equal share each, so that the last round is never shorter than an early one and
+    // every round gets a step (check_rounds refuses fewer iterations than rounds).
     const uint64_t early = std::max<uint64_t>(1, std::min(spacing, iterations / n));
     return r < n ? early : iterations - early * (n - 1);
 }
@@ -114,7 +115,9 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         if (options.seconds) {
             const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             // A round the earlier ones left no time still takes its one step (planned_iterations).
-            finetune.seconds = std::max(round_seconds(*options.seconds - spent, round, options.rounds, options.round_spacing > 0), 1e-3);
+            const double share =
+                round_seconds(*options.seconds - spent, round, options.rounds, options.round_spacing > 0);
+            finetune.seconds = std::max(share, 1e-3);
         } else {
             finetune.seconds.reset();
             finetune.iterations = round_iterations(iterations, round, options.rounds, options.round_spacing);

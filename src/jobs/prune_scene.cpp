@@ -145,7 +145,6 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     const RecoverOptions recover = recover_options(options, result);
     const PhotoSource photos = recover_photos(options);
     const gpu::Context& context = renderer.context();
-    const prune::Ranking ranking(scored.scores, scored.candidates);
     const auto report = [&](int round, const train::LoopStatus& status) {
         if (progress.refit) progress.refit(round, status);
     };
@@ -156,8 +155,8 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
                                   [&](const train::LoopStatus& s) { report(1, s); })
                 .cloud;
         };
-        result.budget = prune::fit_quality_budget(renderer, cloud, ranking, targets, refitted, options.settings,
-                                                  progress.probe);
+        result.budget = prune::fit_quality_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates),
+                                                  targets, refitted, options.settings, progress.probe);
         return result.budget->model ? std::move(*result.budget->model) : cloud.subset(result.budget->keep);
     }
     if (const auto size = size_budget(options)) {
@@ -174,8 +173,8 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         return prune::fit_refitted(chosen, refitted, chosen_scores, *size);
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
-    RecoverResult recovered = prune_and_recover(context, renderer, cloud, scored.scores, scored.candidates, keep, cameras, photos, recover,
-                                                {}, report);
+    RecoverResult recovered = prune_and_recover(context, renderer, cloud, scored.scores, scored.candidates, keep,
+                                                cameras, photos, recover, {}, report);
     for (const auto& round : recovered.rounds)
         result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});
     return std::move(recovered.cloud);

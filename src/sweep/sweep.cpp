@@ -190,7 +190,8 @@ SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, std::span<c
     uint64_t reported = 0;
     const auto refit_progress = [&](int round, const train::LoopStatus& status) {
         uint64_t done = status.iteration;
-        for (int r = 1; r < round; ++r) done += jobs::round_iterations(iterations, r, recover.rounds, recover.round_spacing);
+        for (int r = 1; r < round; ++r)
+            done += jobs::round_iterations(iterations, r, recover.rounds, recover.round_spacing);
         reporter.clock.advance(double(done - std::min(done, reported)));
         reported = std::max(reported, done);
         reporter.step(stage, size_t(reported), size_t(iterations));
@@ -380,8 +381,8 @@ SweepResult sweep_scene(Renderer& renderer, const GaussianCloud& input, const st
             result.rows.push_back(row);
             if (progress.row) progress.row(result.rows.back());
             if (photos && fraction > 0) {
-                recovered.push_back(recover_row(renderer, cloud, scores, candidates, keep, method, row, cameras, *photos, targets,
-                                                result, options, reporter));
+                recovered.push_back(recover_row(renderer, cloud, scores, candidates, keep, method, row, cameras,
+                                                *photos, targets, result, options, reporter));
                 if (progress.row) progress.row(recovered.back());
             }
         }

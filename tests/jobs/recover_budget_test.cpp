@@ -146,8 +146,9 @@ TEST_F(RecoverBudget, TheRoundsShareOneBudget) {
     recover.rounds = 3;
     recover.finetune = options;
     const auto start = std::chrono::steady_clock::now();
-    const jobs::RecoverResult result = jobs::prune_and_recover(context(), renderer, truth, scores, prune::lossless_mask(totals), truth.size() / 5,
-                                                               cameras, photos, recover);
+    const jobs::RecoverResult result = jobs::prune_and_recover(context(), renderer, truth, scores,
+                                                               prune::lossless_mask(totals), truth.size() / 5, cameras,
+                                                               photos, recover);
     const double seconds = seconds_since(start);
     ASSERT_EQ(result.rounds.size(), 3u);
     for (const jobs::RecoverRound& round : result.rounds) EXPECT_GE(round.refit.iterations, 1u);
