@@ -3,7 +3,8 @@
 // that has a Vulkan driver and no image codecs. Photos come as <name>.npy (uint8 [H, W, 3], made
 // on the host by benchmarks/photos_to_npy.py); quality is PSNR against them on the test views. Prints
 // the test PSNR before and after, the time per iteration (GPU median and wall) with its per-pass
-// split, and the device memory of the re-fit against the renderer's for the same scene.
+// split, the device memory of the re-fit against the renderer's for the same scene, and the bytes
+// the model takes as the files a size budget (prune --max-mb) counts, before and after the re-fit.
 //
 //   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
 //   refit_bench lego.ply ... --drop 0.8 --position-lr decay   (blend ranking, 80% dropped, prune --recover's
@@ -12,6 +13,8 @@
 //   refit_bench lego.ply ... --drop 0.8 --rounds 3 --round-spacing 0 --sample false   (the schedule before)
 //   refit_bench lego.ply ... --drop 0.8 --position-lr decay --seconds 60   (a wall-time budget,
 //     `prune --recover-seconds 60`), --lr sh_dc=0.5 --lr opacity=0.5 (rates times a factor)
+//   refit_bench bonsai.spz ... --drop 0.8 --sh-degree 1   (a size point: the whole cloud at SH degree 1,
+//     as `prune --max-mb` may choose it, pruned and re-fitted; its bytes as SPZ and compressed PLY)
 //   refit_bench bonsai.spz ... --keep keep85.npy --subject --save refit.ply
 //     (what `vksplat cluster prune --recover N` re-fits: the Gaussians the mask keeps, the loss of each
 //     training view masked to the subject region of the whole scene's render, quality = PSNR inside
@@ -32,12 +35,23 @@
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/size_budget.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
 #include "npy_photo.hpp"
 
 using namespace vksplat;
 using bench::read_npy_photo;
+
+namespace {
+
+// The bytes of `cloud` as the files a size budget measures (prune --max-mb -o x.spz / x.compressed.ply).
+void print_file_bytes(const char* what, const GaussianCloud& cloud) {
+    std::printf("%s (%zu Gaussians, SH degree %d): %zu bytes as SPZ, %zu as compressed PLY\n", what, cloud.size(),
+                cloud.sh_degree, prune::scene_file_bytes(cloud, "spz"), prune::scene_file_bytes(cloud, "compressed-ply"));
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
     CLI::App app{"refit_bench: re-fit a scene to its photos on the GPU and report quality, time and memory"};
@@ -46,6 +60,7 @@ int main(int argc, char** argv) {
     std::vector<float> background{0, 0, 0};
     std::optional<uint64_t> iterations;  // unset: 5000, or with --drop by the fraction dropped
     std::optional<double> drop, seconds;
+    std::optional<int> sh_degree;
     std::vector<std::string> rate_factors;
     const jobs::RecoverOptions recover_defaults;
     int rounds = recover_defaults.rounds;
@@ -76,6 +91,8 @@ int main(int argc, char** argv) {
                    "true: keep a weighted random sample by score in every round, not the best-scored");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
+    app.add_option("--sh-degree", sh_degree, "reduce the whole cloud to this SH degree before pruning and re-fitting")
+        ->check(CLI::Range(0, 3));
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
     app.add_flag("--subject", subject_only,
                  "mask the loss and measure inside the subject region (the automatic ball) of the whole scene");
@@ -90,6 +107,7 @@ int main(int argc, char** argv) {
             if (keep.size() != whole.size()) throw InputError(keep_path, "does not mark every Gaussian of the scene");
             cloud = whole.subset(keep);
         }
+        if (sh_degree && *sh_degree < cloud.sh_degree) cloud = cloud.with_sh_degree(*sh_degree);
         const auto cameras = io::read_cameras(cameras_path);
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         jobs::FinetuneOptions options;
@@ -147,6 +165,7 @@ int main(int argc, char** argv) {
             return q;
         };
         std::printf("%s: %zu Gaussians on %s\n", scene_path.c_str(), cloud.size(), context.info().name.c_str());
+        print_file_bytes("input file", cloud);
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
         const auto report = [](const train::LoopStatus& s) {
             if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
@@ -202,10 +221,12 @@ int main(int argc, char** argv) {
                                     : "",
                             recovered.rounds[r].refit.seconds);
             result = recovered.rounds.back().refit;
+            result.cloud = recovered.cloud;  // the round's own was moved into the next (prune_and_recover)
             std::printf("test PSNR (%zu views): unpruned %.3f, %.0f%% dropped %.3f (%+.3f), re-fitted %.3f (%+.3f)\n",
                         test.size(), unpruned, 100.0 * *drop, pruned, pruned - unpruned, result.after->mean_psnr,
                         result.after->mean_psnr - unpruned);
         }
+        print_file_bytes("re-fitted file", result.cloud);
         if (!save.empty()) io::write_scene(result.cloud, save, io::WriteMode::overwrite);
         std::printf("iterations %llu (skipped %llu), wall %.2f s = %.3f ms per iteration, GPU median %.3f ms\n",
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
