@@ -47,6 +47,28 @@ struct GaussianStats {
     size_t size() const { return visible.size(); }
 };
 
+// Per-Gaussian statistics summed over views (Renderer::render_stats_totals), indexed like the cloud
+// given to set_scene (0 for a Gaussian sanitising dropped).
+struct GaussianTotals {
+    std::vector<double> blend_weight;       // sum over views and pixels of alpha * T
+    std::vector<float> max_weight;          // max over views and pixels of alpha * T
+    std::vector<uint64_t> pixels;           // GaussianStats::pixels summed over views
+    // Sum over the views where it survived culling of its radius squared (pixels^2; a radius
+    // counts at most 2^24 pixels, far beyond any image, to keep the sum in 64 bits).
+    std::vector<uint64_t> radius_squared;
+    std::vector<uint32_t> views_visible;    // views in which it survived culling
+    size_t views = 0;                       // how many views were summed
+
+    void resize(size_t n) {
+        blend_weight.assign(n, 0.0);
+        max_weight.assign(n, 0.0f);
+        pixels.assign(n, 0);
+        radius_squared.assign(n, 0);
+        views_visible.assign(n, 0);
+    }
+    size_t size() const { return blend_weight.size(); }
+};
+
 // Images are row-major, top row first. rgb has 3 floats per pixel, unclamped above
 // (the reference's forward output; writers clamp to [0, 1]).
 struct RenderOutput {

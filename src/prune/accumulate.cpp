@@ -1,9 +1,7 @@
 // Sums the blend pass's per-Gaussian statistics over many views.
 #include "vksplat/prune/accumulate.hpp"
 
-#include <algorithm>
 #include <numbers>
-#include <optional>
 #include <string>
 
 #include "vksplat/error.hpp"
@@ -11,42 +9,40 @@
 #include "vksplat/prune/scores.hpp"
 
 namespace vksplat::prune {
-namespace {
-
-void add_view(ViewTotals& totals, const GaussianStats& stats, const std::vector<float>& opacity) {
-    for (size_t i = 0; i < totals.size(); ++i) {
-        totals.blend[i] += stats.blend_weight[i];
-        totals.blend_max[i] = std::max(totals.blend_max[i], stats.max_weight[i]);
-        totals.pixels[i] += stats.pixels[i];
-        if (!stats.visible[i]) continue;
-        const double radius = stats.radius[i];
-        totals.footprint[i] += double(opacity[i]) * std::numbers::pi * radius * radius;
-        ++totals.views_visible[i];
-    }
-}
-
-}  // namespace
 
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                       const std::vector<size_t>& views, const RenderSettings& settings, const Progress& progress,
                       bool fisher) {
-    for (size_t view : views)
+    std::vector<Camera> picked;
+    for (size_t view : views) {
         if (view >= cameras.size())
             throw InputError("view " + std::to_string(view),
                              "there are only " + std::to_string(cameras.size()) + " cameras");
-    renderer.set_scene(cloud);
-    const std::vector<float> opacity = opacities(cloud);
-
-    ViewTotals totals(cloud.size());
-    std::optional<FisherInformation> information;
-    if (fisher) information.emplace(cloud, settings);
-    for (size_t done = 0; done < views.size(); ++done) {
-        add_view(totals, renderer.render_stats(cameras[views[done]], settings), opacity);
-        if (information) information->add_view(cameras[views[done]]);
-        ++totals.views;
-        if (progress) progress(done + 1, views.size());
+        picked.push_back(cameras[view]);
     }
-    if (information) totals.fisher = information->log_dets();
+    renderer.set_scene(cloud);
+    const size_t steps = picked.size() * (fisher ? 2 : 1);
+    const GaussianTotals sums = renderer.render_stats_totals(picked, settings, [&](size_t done, size_t) {
+        if (progress) progress(done, steps);
+    });
+
+    const std::vector<float> opacity = opacities(cloud);
+    ViewTotals totals(cloud.size());
+    totals.views = sums.views;
+    totals.blend = sums.blend_weight;
+    totals.blend_max = sums.max_weight;
+    totals.pixels = sums.pixels;
+    totals.views_visible = sums.views_visible;
+    for (size_t i = 0; i < cloud.size(); ++i)
+        totals.footprint[i] = double(opacity[i]) * std::numbers::pi * double(sums.radius_squared[i]);
+    if (fisher) {
+        FisherInformation information(cloud, settings);
+        for (size_t done = 0; done < picked.size(); ++done) {
+            information.add_view(picked[done]);
+            if (progress) progress(picked.size() + done + 1, steps);
+        }
+        totals.fisher = information.log_dets();
+    }
     return totals;
 }
 

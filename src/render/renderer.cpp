@@ -5,6 +5,7 @@
 #include <cstring>
 #include <cstdio>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 
 #include "gpu/command_stream.hpp"
@@ -16,6 +17,7 @@
 #include "render/frame_resources.hpp"
 #include "render/gpu_scene.hpp"
 #include "render/scene_chunks.hpp"
+#include "render/stats_totals.hpp"
 #include "render/target_copy.hpp"
 #include "render/tile_binning.hpp"
 #include "shaders/render/blend.kernel.hpp"
@@ -50,6 +52,20 @@ void check_frame_fits(const Camera& camera, uint64_t least, uint64_t image, uint
     throw GpuError("memory budget of " + mebibytes(budget) + " is too small for " + frame + ": it needs " + needs +
                    "; raise --memory-budget to at least " + std::to_string((least + (1 << 20) - 1) >> 20) + " (MiB" +
                    (device > 0 ? "; the device has " + mebibytes(device) : std::string()) + ")");
+}
+
+// One view's statistics (indexed like the input cloud) into totals over views, as
+// shaders/render/stats_totals.comp adds them on the device.
+void add_view(GaussianTotals& totals, const GaussianStats& stats) {
+    for (size_t i = 0; i < totals.size(); ++i) {
+        totals.blend_weight[i] += stats.blend_weight[i];
+        totals.max_weight[i] = std::max(totals.max_weight[i], stats.max_weight[i]);
+        totals.pixels[i] += stats.pixels[i];
+        if (!stats.visible[i]) continue;
+        const auto radius = uint64_t(std::min(stats.radius[i], float(shader::render::TOTALS_MAX_RADIUS)));
+        totals.radius_squared[i] += radius * radius;
+        ++totals.views_visible[i];
+    }
 }
 
 }  // namespace
@@ -97,7 +113,9 @@ struct Renderer::Impl {
     // the last chunk stores, the carried pixel state.
     void record_blend_pass(gpu::CommandStream& stream, uint32_t tiles_x, uint32_t tiles_y, bool gather_stats,
                            const uint32_t* carry_flags = nullptr);
-    void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats);
+    // With `totals`, the statistics are added into them on the device instead of read back.
+    void record_frame(const render::CameraParams& params, bool read_back, bool gather_stats,
+                      render::StatsTotals* totals = nullptr);
     // The image readback: colour and alpha (16 bytes a pixel), depth (4), contributors (4), then
     // the counters; without the image (read_back false) the counters alone, at offset 0.
     static VkDeviceSize readback_counters_offset(uint32_t pixels, bool read_back) {
@@ -110,10 +128,14 @@ struct Renderer::Impl {
     // Waits for the frames recorded into the application's command buffers, before a buffer they
     // use is freed. Nothing to wait for if record() was never called.
     void wait_for_recorded_frames() const;
-    void run(const Camera& camera, const RenderSettings& settings, bool read_back);
+    // `totals` (statistics summed on the device, for a scene without a host copy: such a frame is
+    // never chunked) instead of `gathered`.
+    void run(const Camera& camera, const RenderSettings& settings, bool read_back,
+             render::StatsTotals* totals = nullptr);
     // The frame with the whole scene on the device; false (having drawn nothing) when its tile
     // entries would outgrow the memory budget and the frame can go in chunks instead.
-    bool run_whole(const Camera& camera, const RenderSettings& settings, bool read_back);
+    bool run_whole(const Camera& camera, const RenderSettings& settings, bool read_back,
+                   render::StatsTotals* totals = nullptr);
     // The frame in depth-ordered chunks uploaded from `host`, each within the memory budget.
     void run_chunked(const Camera& camera, const RenderSettings& settings, bool read_back);
     // Device bytes after ensure_* for these sizes, given what the frame resources already hold.
@@ -193,13 +215,17 @@ void Renderer::Impl::record_blend_pass(gpu::CommandStream& stream, uint32_t tile
     stream.mark("blend");
 }
 
-void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats) {
+void Renderer::Impl::record_frame(const render::CameraParams& params, bool read_back, bool gather_stats,
+                                  render::StatsTotals* totals) {
     const uint32_t pixels = params.size[0] * params.size[1];
     const uint32_t n = scene.count;
     auto& f = frame;
     stream.begin();
     record_passes(stream, params, scene, gather_stats);
-    if (gather_stats) copy_stats(stream, n);
+    if (gather_stats && totals)
+        totals->record_add(stream, f, f.entry_capacity);
+    else if (gather_stats)
+        copy_stats(stream, n);
 
     const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
     if (read_back) copy_image_to_readback(stream, pixels);
@@ -255,7 +281,9 @@ void Renderer::Impl::add_stage_times() {
     }
 }
 
-void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back) {
+void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, bool read_back,
+                         render::StatsTotals* totals) {
+    if (totals && has_host) throw std::logic_error("Renderer: device totals of a scene that may be chunked");
     camera.validate();
     const auto [pixels, tiles] = render::image_extent(camera);
     // The image buffers of a frame no device can hold: refused before an allocation fails with
@@ -272,7 +300,7 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
                               projected_frame_bytes(scene.count, entries, pixels, tiles, false, settings.gather_stats);
         // Without a host copy there is nothing to chunk from: the budget is then the device's own
         // limit, and a frame beyond it fails with the allocation's out-of-memory message.
-        if ((need <= budget || !has_host) && run_whole(camera, settings, read_back)) return;
+        if ((need <= budget || !has_host) && run_whole(camera, settings, read_back, totals)) return;
         // From here on the scene lives on the host: free its device copy for the chunks.
         scene.params = gpu::Buffer();
         scene.sh = gpu::Buffer();
@@ -280,7 +308,8 @@ void Renderer::Impl::run(const Camera& camera, const RenderSettings& settings, b
     run_chunked(camera, settings, read_back);
 }
 
-bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& settings, bool read_back) {
+bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& settings, bool read_back,
+                               render::StatsTotals* totals) {
     const auto [pixels, tiles] = render::image_extent(camera);
     frame.ensure_gaussians(scene.count);
     frame.ensure_image(pixels, tiles);
@@ -294,7 +323,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         const auto params = render::make_camera_params(camera, settings, scene.count, scene.sh_degree,
                                                        scene.half_sh, frame.entry_capacity);
         stats.tile_key_bits = render::tile_key_bits(params.size[2] * params.size[3]);
-        record_frame(params, read_back, settings.gather_stats);
+        record_frame(params, read_back, settings.gather_stats, totals);
         uint32_t counters[render::kCounterCount];
         const VkDeviceSize counters_offset = readback_counters_offset(pixels, read_back);
         std::memcpy(counters, static_cast<const char*>(frame.readback.mapped()) + counters_offset, sizeof(counters));
@@ -316,7 +345,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
         ++stats.attempts;
     }
     add_stage_times();
-    if (settings.gather_stats) {
+    if (settings.gather_stats && !totals) {
         gathered = {};
         gathered.resize(input_count);
         unpack_stats(scene.count, nullptr, gathered);
@@ -633,6 +662,28 @@ GaussianStats Renderer::render_stats(const Camera& camera, const RenderSettings&
     with_stats.gather_stats = true;
     impl_->run(camera, with_stats, false);
     return std::move(impl_->gathered);
+}
+
+GaussianTotals Renderer::render_stats_totals(const std::vector<Camera>& cameras, const RenderSettings& settings,
+                                             const std::function<void(size_t, size_t)>& progress) {
+    auto& d = *impl_;
+    RenderSettings with_stats = settings;
+    with_stats.gather_stats = true;
+    GaussianTotals totals;
+    totals.resize(d.input_count);
+    std::optional<render::StatsTotals> on_device;
+    if (!d.has_host && d.scene.params) {
+        d.stats_kernel();  // the device check
+        on_device.emplace(d.context, d.scene.count);
+    }
+    for (size_t v = 0; v < cameras.size(); ++v) {
+        d.run(cameras[v], with_stats, false, on_device ? &*on_device : nullptr);
+        if (!on_device) add_view(totals, d.gathered);
+        ++totals.views;
+        if (progress) progress(v + 1, cameras.size());
+    }
+    if (on_device) on_device->add_to(totals, d.kept_indices);
+    return totals;
 }
 
 void Renderer::record(VkCommandBuffer command_buffer, const Camera& camera, const RenderSettings& settings,

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <numbers>
 
 #include "support/gpu_fixture.hpp"
@@ -40,21 +41,27 @@ TEST_F(Accumulate, SumsThePerViewStatistics) {
     ASSERT_EQ(totals.size(), cloud.size());
     EXPECT_EQ(totals.views, 3u);
 
-    // The statistics of full renders (pictures and all), summed in the same order: the same numbers.
+    // The statistics of full renders (pictures and all), summed exactly: the blend weights as the
+    // 32.32 fixed-point integers they are, the footprint as opacity * pi * the summed squared radii.
     RenderSettings settings;
     settings.gather_stats = true;
     const std::vector<float> opacity = prune::opacities(cloud);
     prune::ViewTotals expected(cloud.size());
+    std::vector<uint64_t> fixed(cloud.size(), 0), radius_squared(cloud.size(), 0);
     for (size_t view : {0, 2, 1}) {
         const GaussianStats stats = renderer.render(cameras[view], settings).stats;
         for (size_t i = 0; i < cloud.size(); ++i) {
-            expected.blend[i] += stats.blend_weight[i];
+            fixed[i] += uint64_t(std::ldexp(stats.blend_weight[i], 32));
             expected.blend_max[i] = std::max(expected.blend_max[i], stats.max_weight[i]);
             expected.pixels[i] += stats.pixels[i];
             if (!stats.visible[i]) continue;
-            expected.footprint[i] += double(opacity[i]) * std::numbers::pi * double(stats.radius[i]) * stats.radius[i];
+            radius_squared[i] += uint64_t(stats.radius[i]) * uint64_t(stats.radius[i]);
             ++expected.views_visible[i];
         }
+    }
+    for (size_t i = 0; i < cloud.size(); ++i) {
+        expected.blend[i] = std::ldexp(double(fixed[i]), -32);
+        expected.footprint[i] = double(opacity[i]) * std::numbers::pi * double(radius_squared[i]);
     }
     size_t seen = 0, blended = 0;
     for (size_t i = 0; i < cloud.size(); ++i) {

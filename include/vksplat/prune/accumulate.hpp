@@ -36,9 +36,11 @@ struct ViewTotals {
 using Progress = std::function<void(size_t done, size_t total)>;
 
 // Uploads `cloud` (replacing the renderer's scene, so that the statistics are indexed like it),
-// renders the statistics of each of `views` (indices into `cameras`; Renderer::render_stats, which
-// reads back no picture) and sums them. `settings` gives the background and SH degree. With `fisher` it also
-// sums the Fisher information of each view (ViewTotals::fisher; the cloud must be sanitised).
+// renders the statistics of each of `views` (indices into `cameras`) and sums them
+// (Renderer::render_stats_totals, which sums them on the device where it can); the footprint is
+// opacity * pi * the summed squared radii. `settings` gives the background and SH degree. With
+// `fisher` it also sums the Fisher information of each view (ViewTotals::fisher; the cloud must be
+// sanitised), a CPU pass after the renders: `progress` then counts to twice the views.
 // Throws InputError for a view index out of range.
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                       const std::vector<size_t>& views, const RenderSettings& settings,

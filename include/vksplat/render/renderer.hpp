@@ -6,6 +6,7 @@
 //   auto report = renderer.set_scene(cloud);   // sanitises a copy and uploads it
 //   RenderOutput image = renderer.render(camera, settings);
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -84,6 +85,15 @@ public:
     // (24 bytes a pixel, whose copy and unpacking take a GPU longer than the frame itself). For
     // passes that score views.
     GaussianStats render_stats(const Camera& camera, const RenderSettings& settings = {});
+    // The statistics of render_stats for each of `cameras`, summed per Gaussian. With the scene
+    // whole on the device and no memory budget set (SceneStorage::memory_budget, the context's),
+    // one more pass adds each view's into totals on the device, read back once at the end: a
+    // view's statistics readback costs more than its frame (bonsai's settling scored 4 ms a view
+    // that way on an H200). Otherwise every view's come back and are summed here. The blend
+    // weights are summed exactly in fixed point on the device, in double here. `progress(done,
+    // total)` after each view.
+    GaussianTotals render_stats_totals(const std::vector<Camera>& cameras, const RenderSettings& settings = {},
+                                       const std::function<void(size_t, size_t)>& progress = {});
     // Records the render of one view into `command_buffer`, which the application has begun and
     // will submit, leaving the picture in the application's image or buffer. Submits nothing and
     // waits for nothing, except the context's queue when buffers must grow. The synchronisation
