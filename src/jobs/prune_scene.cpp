@@ -45,9 +45,6 @@ void check_options(const PruneOptions& options) {
     if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::QualityBudget>(options.selector))
         throw InputError("--rounds " + std::to_string(options.recover->rounds),
                          "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
-    if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::SizeBudget>(options.selector))
-        throw InputError("--rounds " + std::to_string(options.recover->rounds),
-                         "a size budget re-fits the model it chose once: use one round with --max-mb");
 }
 
 // The size budget of options.selector in the output's format (prune/size_budget.hpp).
@@ -136,9 +133,37 @@ PhotoSource recover_photos(const PruneOptions& options) {
     return photos_in_folder(*options.images_dir, options.settings.background);
 }
 
-// Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted before it is
-// measured; with a size budget, the model chosen is re-fitted; otherwise the selector's count is
-// reached in the rounds asked for.
+// What each round of a re-fit kept and took, for the report.
+void report_rounds(PruneResult& result, const RecoverResult& recovered) {
+    for (const auto& round : recovered.rounds)
+        result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});
+}
+
+// The size budget's choice (result.budget) re-fitted: its count reached in the rounds asked for
+// from the cloud at the chosen model's degree, then its bands per Gaussian dropped again and its
+// least Gaussians, if need be, until the file fits (prune::fit_refitted).
+GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
+                                const std::vector<Camera>& cameras, const Scored& scored, const PhotoSource& photos,
+                                const RecoverOptions& recover, const prune::SizeBudget& size,
+                                const PruneOptions& options, const PruneProgress& progress) {
+    const prune::BudgetResult& choice = *result.budget;
+    const GaussianCloud start = choice.sh_degree < cloud.sh_degree ? cloud.with_sh_degree(choice.sh_degree) : cloud;
+    RecoverResult recovered = prune_and_recover(renderer.context(), renderer, start, scored.scores, scored.candidates,
+                                                choice.kept, cameras, photos, recover, {}, progress.refit);
+    report_rounds(result, recovered);
+    // Which bands cost least and which Gaussians go first if the file outgrows the budget, by the
+    // re-fitted model's own blend weights: its Gaussians are not the choice's (the rounds re-rank
+    // and sample), and one scoring pass costs less than a round's re-fit.
+    const prune::ViewTotals totals = prune::accumulate(renderer, recovered.cloud, cameras, result.train_views,
+                                                       options.settings, {}, prune::needs_fisher(options.method));
+    return prune::fit_refitted(recovered.cloud, totals.blend,
+                               prune::score(recovered.cloud, totals, options.method, options.seed),
+                               prune::model_sh_share(choice, cloud.sh_degree), size);
+}
+
+// Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted (one round)
+// before it is measured; with a size budget, the count and SH bands chosen are reached in the
+// rounds asked for; otherwise the selector's count is.
 GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
                       const std::vector<Camera>& cameras, const Scored& scored, const eval::TestViews& targets,
                       const PruneOptions& options, const PruneProgress& progress) {
@@ -149,6 +174,8 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         if (progress.refit) progress.refit(round, status);
     };
     if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
+        // One round per probe: the bisection re-fits every probe it measures, so rounds (each
+        // scoring every training view again) would multiply the whole search's cost.
         prune::QualityBudget refitted = *budget;
         refitted.refit = [&](const GaussianCloud& model) {
             return finetune_scene(context, model, cameras, photos, single_refit(recover, cloud.size(), model.size()), {},
@@ -161,22 +188,13 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     }
     if (const auto size = size_budget(options)) {
         select(result, renderer, cloud, scored, targets, options, progress);
-        const GaussianCloud chosen = std::move(*result.budget->model);
-        result.budget->model.reset();
-        const GaussianCloud refitted = finetune_scene(context, chosen, cameras, photos,
-                                                      single_refit(recover, cloud.size(), chosen.size()), {},
-                                                      [&](const train::LoopStatus& s) { report(1, s); })
-                                           .cloud;
-        std::vector<float> chosen_scores;
-        for (size_t i = 0; i < result.budget->keep.size(); ++i)
-            if (result.budget->keep[i]) chosen_scores.push_back(scored.scores[i]);
-        return prune::fit_refitted(chosen, refitted, chosen_scores, *size);
+        result.budget->model.reset();  // un-refitted: the rounds start again from the cloud
+        return refit_size_choice(result, renderer, cloud, cameras, scored, photos, recover, *size, options, progress);
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
     RecoverResult recovered = prune_and_recover(context, renderer, cloud, scored.scores, scored.candidates, keep,
                                                 cameras, photos, recover, {}, report);
-    for (const auto& round : recovered.rounds)
-        result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});
+    report_rounds(result, recovered);
     return std::move(recovered.cloud);
 }
 

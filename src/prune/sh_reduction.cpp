@@ -85,4 +85,8 @@ GaussianCloud with_sh_degrees(const GaussianCloud& cloud, std::span<const uint8_
     return cloud.empty() ? out : out.with_sh_degree(highest);
 }
 
+GaussianCloud with_sh_share_dropped(const GaussianCloud& cloud, std::span<const double> weights, double share) {
+    return with_sh_degrees(cloud, reduced_sh_degrees(cloud, weights, share));
+}
+
 }  // namespace vksplat::prune

@@ -4,6 +4,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -90,11 +91,17 @@ void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budge
                          megabytes(bytes) + " MB) as " + budget.format);
 }
 
-GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, std::span<const float> scores,
-                           const SizeBudget& budget) {
-    if (refitted.size() != chosen.size() || scores.size() != chosen.size())
-        throw std::invalid_argument("prune::fit_refitted: the re-fitted model or the scores are not of the chosen one");
-    const GaussianCloud reduced = with_sh_degrees(refitted, sh_degrees_in_use(chosen));
+double model_sh_share(const BudgetResult& choice, int cloud_degree) {
+    if (!(choice.sh_share > 0) || choice.sh_degree <= 0) return 0;
+    const double kept = (1.0 - choice.sh_share) * double(cloud_degree);  // higher bands per Gaussian
+    return std::clamp(1.0 - kept / double(choice.sh_degree), 0.0, 1.0);
+}
+
+GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double> weights, std::span<const float> scores,
+                           double sh_share, const SizeBudget& budget) {
+    if (scores.size() != refitted.size())
+        throw std::invalid_argument("prune::fit_refitted: the scores are not of the re-fitted model");
+    const GaussianCloud reduced = with_sh_share_dropped(refitted, weights, sh_share);
     const Ranking ranking(scores, keep_all(reduced.size()));
     const size_t kept = largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
         return scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
@@ -114,8 +121,7 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
         const KeepMask keep = ranking.keep_best(kept);
         GaussianCloud model = cloud.subset(keep);
         if (choice.degree != model.sh_degree) model = model.with_sh_degree(choice.degree);
-        if (choice.share > 0)
-            model = with_sh_degrees(model, reduced_sh_degrees(model, kept_values(weights, keep), choice.share));
+        if (choice.share > 0) model = with_sh_share_dropped(model, kept_values(weights, keep), choice.share);
         return model;
     };
     const std::vector<ShChoice> choices = sh_choices(cloud.sh_degree);

@@ -1,5 +1,6 @@
 // prune with a size budget (--max-mb): the file written fits, a larger budget keeps more, the
-// re-fit still fits, and what cannot be honoured is refused before any scoring.
+// re-fit reaches the choice in rounds and still fits, and what cannot be honoured is refused
+// before any scoring.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -72,32 +73,37 @@ TEST_F(PruneSizeBudget, WritesAFileThatFitsAndKeepsMoreForMore) {
     EXPECT_LE(fs::file_size(dir / "small.compressed.ply"), whole);
 }
 
-TEST_F(PruneSizeBudget, ReFittedAfterTheChoiceAndStillFits) {
+// The re-fit runs the rounds a plain --recover runs (RecoverOptions), down to the count chosen;
+// then the share of bands chosen is dropped again and the file still fits.
+TEST_F(PruneSizeBudget, ReachesTheChoiceInRoundsAndStillFits) {
     const size_t whole = whole_spz_bytes();
     jobs::PruneOptions o = options(whole / 2, "refit.spz");
     o.images_dir = dir / "photos";
     jobs::RecoverOptions recover;
     recover.iterations = 20;
-    recover.rounds = 1;
+    recover.rounds = 3;
+    recover.round_spacing = 4;
     o.recover = recover;
     const jobs::PruneResult result = prune(o);
     EXPECT_LE(fs::file_size(dir / "refit.spz"), whole / 2);
     ASSERT_TRUE(result.budget);
-    // The bands the choice dropped stay dropped after the re-fit (less those of Gaussians dropped
-    // to fit again): the re-fit gives them no colour back.
+    ASSERT_EQ(result.recover_rounds.size(), 3u);
+    EXPECT_GT(result.recover_rounds[0].kept, result.recover_rounds[1].kept);
+    EXPECT_GT(result.recover_rounds[1].kept, result.recover_rounds[2].kept);
+    EXPECT_EQ(result.recover_rounds[2].kept, result.budget->kept) << "the last round keeps the count chosen";
+    EXPECT_EQ(result.recover_rounds[0].iterations, 4u);
+    EXPECT_EQ(result.recover_rounds[2].iterations, 12u);
+    // The bands the choice dropped are dropped again after the re-fit (less those of Gaussians
+    // dropped to fit again): the re-fit gives them colour that the file would pay for.
     const GaussianCloud written = io::read_scene(dir / "refit.spz");
+    const prune::BudgetResult& chosen = *result.budget;
+    ASSERT_GT(chosen.sh_share, 0.0) << "the test needs a choice that drops bands";
+    EXPECT_LE(written.sh_degree, chosen.sh_degree);
+    EXPECT_LE(written.size(), chosen.kept);
     long dropped = 0;
     for (uint8_t degree : prune::sh_degrees_in_use(written)) dropped += cloud.sh_degree - degree;
-    const auto& chosen = *std::min_element(result.budget->probes.begin(), result.budget->probes.end(),
-                                           [](const auto& a, const auto& b) { return a.drop < b.drop; });
-    ASSERT_GT(chosen.sh_share, 0.0) << "the test needs a choice that drops bands";
     const long gone = long(chosen.kept) - long(written.size());
     EXPECT_GE(dropped + gone * cloud.sh_degree, std::lround(chosen.sh_share * double(chosen.kept) * cloud.sh_degree));
-
-    o.recover->rounds = 2;
-    o.out = dir / "rounds.spz";
-    EXPECT_NE(refusal(o).find("--rounds 2"), std::string::npos);
-    EXPECT_FALSE(scored);
 }
 
 TEST_F(PruneSizeBudget, RefusesBeforeScoringWhatNoModelFitsAndAnOutputThatExists) {

@@ -45,34 +45,52 @@ TEST(SceneFileBytes, AreTheBytesTheWriterWrites) {
     fs::remove_all(dir);
 }
 
-TEST(FitRefitted, DropsTheChosenBandsAgainAndItsLeastGaussiansUntilItFits) {
-    const GaussianCloud scene = random_scene(93, 300, 3);
-    std::vector<uint8_t> degrees(scene.size());
-    for (size_t i = 0; i < degrees.size(); ++i) degrees[i] = uint8_t(i % 4);
-    const GaussianCloud chosen = prune::with_sh_degrees(scene, degrees);
-    // A re-fit moves every value: the dropped bands get colour back, positions move.
-    GaussianCloud refitted = chosen;
-    for (size_t f = 0; f < refitted.sh.size(); ++f) refitted.sh[f] += f % 2 ? 0.05f : -0.05f;
-    for (float& p : refitted.positions) p += 0.001f;
-    std::vector<float> scores(scene.size());
+// A choice that took every Gaussian's top band is a model of lower degree: the bands it kept are
+// counted among that degree's.
+TEST(ModelShShare, IsTheShareOfTheChosenModelsOwnBands) {
+    prune::BudgetResult choice;
+    choice.sh_degree = 3;
+    choice.sh_share = 0.5;
+    EXPECT_DOUBLE_EQ(prune::model_sh_share(choice, 3), 0.5);
+    choice.sh_degree = 2;  // of 3 bands each, 1 kept: half of the 2 left
+    choice.sh_share = 4.0 / 6.0;
+    EXPECT_NEAR(prune::model_sh_share(choice, 3), 0.5, 1e-12);
+    choice.sh_degree = 0;  // every higher band gone: none left to drop
+    choice.sh_share = 1.0;
+    EXPECT_EQ(prune::model_sh_share(choice, 3), 0.0);
+    choice.sh_degree = 2;  // the whole cloud at degree 2
+    choice.sh_share = 0.0;
+    EXPECT_EQ(prune::model_sh_share(choice, 3), 0.0);
+}
+
+TEST(FitRefitted, DropsTheBandsTheRefittedModelNeedsLeastAndItsLeastGaussiansUntilItFits) {
+    // A re-fit gives every Gaussian colour in every band; which go is decided on these values.
+    const GaussianCloud refitted = random_scene(93, 300, 3);
+    std::vector<double> weights(refitted.size());
+    for (size_t i = 0; i < weights.size(); ++i) weights[i] = double((i * 11) % 7) + 0.5;
+    std::vector<float> scores(refitted.size());
     for (size_t i = 0; i < scores.size(); ++i) scores[i] = float((i * 37) % 300);
+    const std::vector<uint8_t> degrees = prune::reduced_sh_degrees(refitted, weights, 0.5);
+    ASSERT_NE(degrees, prune::reduced_sh_degrees(refitted, {}, 0.5)) << "the test needs weights that matter";
 
     prune::SizeBudget budget;
     budget.format = "spz";
-    budget.max_bytes = prune::scene_file_bytes(chosen, "spz") * 2;
-    const GaussianCloud roomy = prune::fit_refitted(chosen, refitted, scores, budget);
-    EXPECT_EQ(roomy.size(), chosen.size());
-    EXPECT_EQ(prune::sh_degrees_in_use(roomy), degrees) << "the dropped bands stay dropped";
+    budget.max_bytes = prune::scene_file_bytes(refitted, "spz");
+    const GaussianCloud roomy = prune::fit_refitted(refitted, weights, scores, 0.5, budget);
+    EXPECT_EQ(roomy.size(), refitted.size());
+    EXPECT_EQ(prune::sh_degrees_in_use(roomy), degrees) << "the cheapest bands by the weights and re-fitted values";
     EXPECT_EQ(roomy.positions, refitted.positions);
 
-    budget.max_bytes = prune::scene_file_bytes(chosen, "spz") / 2;
-    const GaussianCloud tight = prune::fit_refitted(chosen, refitted, scores, budget);
+    const GaussianCloud reduced = prune::with_sh_degrees(refitted, degrees);
+    budget.max_bytes = prune::scene_file_bytes(reduced, "spz") / 2;
+    const GaussianCloud tight = prune::fit_refitted(refitted, weights, scores, 0.5, budget);
     EXPECT_LE(prune::scene_file_bytes(tight, "spz"), budget.max_bytes);
-    EXPECT_LT(tight.size(), chosen.size());
-    EXPECT_GT(tight.size(), chosen.size() / 4);
+    EXPECT_LT(tight.size(), refitted.size());
+    EXPECT_GT(tight.size(), refitted.size() / 4);
     const prune::KeepMask best = prune::Ranking(scores, prune::keep_all(scores.size())).keep_best(tight.size());
-    EXPECT_EQ(tight.positions, prune::with_sh_degrees(refitted, degrees).subset(best).positions) << "the best kept";
-    EXPECT_THROW(prune::fit_refitted(chosen, refitted.subset(best), scores, budget), std::invalid_argument);
+    EXPECT_EQ(tight.positions, reduced.subset(best).positions) << "the best kept";
+    EXPECT_EQ(tight.sh, reduced.subset(best).sh);
+    EXPECT_THROW(prune::fit_refitted(refitted.subset(best), weights, scores, 0.5, budget), std::invalid_argument);
 }
 
 class SizeBudget : public GpuTest {

@@ -118,9 +118,8 @@ int run_prune(const PruneArgs& args) {
         jobs::RecoverOptions recover;
         if (!args.recover.empty() && args.recover != "auto") recover.iterations = std::stoull(args.recover);
         recover.seconds = args.recover_seconds;
-        const bool budget = std::holds_alternative<prune::QualityBudget>(options.selector) ||
-                            std::holds_alternative<prune::SizeBudget>(options.selector);
-        recover.rounds = args.rounds.value_or(budget ? 1 : recover.rounds);
+        const bool quality_budget = std::holds_alternative<prune::QualityBudget>(options.selector);
+        recover.rounds = args.rounds.value_or(quality_budget ? 1 : recover.rounds);
         recover.round_spacing = args.round_spacing;
         recover.sampled = args.round_keep == "sample";
         recover.finetune.seed = args.seed;
@@ -231,7 +230,8 @@ void register_prune(CLI::App& app, Action& action) {
                         "re-fit the kept Gaussians to the photos (needs --images) for N iterations, without N\n"
                         "for 5,000 up to half dropped, rising to 30,000 at 80% and 60,000 at 90%; with\n"
                         "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting;\n"
-                        "with --max-mb the model chosen is re-fitted, and still fits")
+                        "with --max-mb the count chosen is reached in the rounds (--rounds), its SH bands\n"
+                        "are dropped again, and the file still fits")
         ->expected(0, 1)
         ->default_str("auto")
         ->check(CLI::IsMember({"auto"}) | count_in(1))
@@ -240,8 +240,8 @@ void register_prune(CLI::App& app, Action& action) {
                         "re-fit (as --recover does) for S seconds of wall time in all, shared by the rounds,\n"
                         "instead of a count of iterations (with --max-psnr-drop: each probe's re-fit)");
     auto* rounds = command->add_option("--rounds", args->rounds,
-                                       "with --recover: prune and re-fit in R rounds (default 5; 1 with --max-psnr-drop\n"
-                                       "or --max-mb), each dropping a geometrically growing share, ranked on the\n"
+                                       "with --recover: prune and re-fit in R rounds (default 5; with --max-psnr-drop\n"
+                                       "1, the only choice), each dropping a geometrically growing share, ranked on the\n"
                                        "re-fitted model and kept as a weighted sample by score; every round but the\n"
                                        "last re-fits 1,000 iterations, the last the rest")
                        ->check(count_in(1, 100));

@@ -55,8 +55,10 @@ struct PruneOptions {
     std::optional<std::filesystem::path> load_scores;
     // Re-fit what is kept to the photos (needs images_dir); see jobs/prune_recover.hpp. With a
     // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting. With
-    // a SizeBudget the model chosen is re-fitted (one round), the SH bands it had dropped are
-    // dropped again, and if its file then outgrows the budget its least Gaussians go until it fits.
+    // a SizeBudget the count chosen is reached in the rounds asked for from the scene at the chosen
+    // model's SH degree, the share of bands it dropped per Gaussian is dropped again (those the
+    // re-fitted model needs least), and if its file then outgrows the budget its least Gaussians go
+    // until it fits (prune::fit_refitted).
     std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene, in the format its name says (io::write_scene)
     io::WriteMode mode = io::WriteMode::refuse_existing;
@@ -80,8 +82,9 @@ struct PruneResult {
     std::optional<eval::Quality> before;
     eval::Quality after;
     std::optional<prune::BudgetResult> budget;  // with a Quality- or SizeBudget selector: every probe
-    // With recover and no budget, each round: the Gaussians it kept, and its re-fit's iterations and
-    // wall time (the iterations a time budget or the fraction dropped chose are told no other way).
+    // With recover and no quality budget, each round: the Gaussians it kept, and its re-fit's
+    // iterations and wall time (the iterations a time budget or the fraction dropped chose are told
+    // no other way). A size budget's last round kept the count chosen, before the file was fitted.
     struct RecoverRoundReport {
         size_t kept = 0;
         uint64_t iterations = 0;

@@ -32,4 +32,8 @@ std::vector<uint8_t> reduced_sh_degrees(const GaussianCloud& cloud, std::span<co
 // keeps (the cloud's own when it is empty). Throws std::invalid_argument when the sizes differ.
 GaussianCloud with_sh_degrees(const GaussianCloud& cloud, std::span<const uint8_t> degrees);
 
+// `cloud` with `share` of its higher bands dropped per Gaussian, the cheapest by `weights` and its
+// own coefficients: with_sh_degrees of reduced_sh_degrees (which throws for what it refuses).
+GaussianCloud with_sh_share_dropped(const GaussianCloud& cloud, std::span<const double> weights, double share);
+
 }  // namespace vksplat::prune

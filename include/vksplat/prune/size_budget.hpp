@@ -37,13 +37,21 @@ size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t
 // there can be: one Gaussian at SH degree 0, or an empty cloud) fits the budget as its format.
 void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budget);
 
-// The model a size budget chose, after a re-fit: `refitted` (the same Gaussians as `chosen`, in the
-// same order) with the SH bands `chosen` had dropped dropped again, since the re-fit gives them
-// colour back that the file would pay for; then, if its file no longer fits (re-fitted values
-// compress less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit.
-// Throws std::invalid_argument when the sizes differ.
-GaussianCloud fit_refitted(const GaussianCloud& chosen, const GaussianCloud& refitted, std::span<const float> scores,
-                           const SizeBudget& budget);
+// The share of its model's higher bands (degrees 1 to BudgetResult::sh_degree) that a size
+// budget's choice drops per Gaussian; 0 for a whole-degree choice. BudgetResult::sh_share counts
+// the bands of the cloud's degree `cloud_degree`, and a share that took every Gaussian's top band
+// made a model of lower degree, of whose fewer bands the same bands kept are a larger share.
+double model_sh_share(const BudgetResult& choice, int cloud_degree);
+
+// The model a size budget chose, after its re-fit: `refitted`, re-fitted at the chosen model's
+// degree with every band (the re-fit gives colour to bands the choice had dropped, which the file
+// would pay for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
+// the cheapest by its own re-fitted coefficients and `weights` (its blend weights, one per
+// Gaussian, or empty; sh_reduction.hpp); then, if its file does not fit (re-fitted values compress
+// less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit. Throws
+// std::invalid_argument when the sizes differ.
+GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double> weights, std::span<const float> scores,
+                           double sh_share, const SizeBudget& budget);
 
 // `cloud` is the unpruned scene, `ranking` orders its candidates, `weights` (empty, or one per
 // Gaussian of `cloud`: prune::ViewTotals::blend) say what SH bands cost (sh_reduction.hpp). The
