@@ -66,7 +66,7 @@ uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t s
 
 // The re-fit of one round that prunes `n` Gaussians to `kept`: options.finetune with the round's
 // iterations (options.iterations, else default_recover_iterations of the fraction dropped) or, with
-// options.seconds, that time budget. What a quality or size budget's single re-fit runs.
+// options.seconds, that time budget. What each probe of a quality budget runs.
 FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept);
 
 // The re-fit iterations when none are asked for, by the fraction of the Gaussians dropped (0..1):
