@@ -76,7 +76,7 @@ struct PreprocessBackwardPush {
     Floats splat_grads;  // SPLAT_GRAD_STRIDE per Gaussian
     Floats grads;        // out: gradients of `raw`, same layout
     Uints counters;      // the frame's counters
-    Uints status;        // [0]: STEP_ bits
+    Uints status;        // [0]: STEP_ bits, [STATUS_OVERFLOW_MARK]: the overflow mark
     Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by
     Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
 };

@@ -40,9 +40,17 @@ SHADER_CONST(uint, DENSIFY_GRAD_SUM, 0u)
 SHADER_CONST(uint, DENSIFY_VIEWS, 1u)
 SHADER_CONST(uint, DENSIFY_MAX_RADIUS, 2u)
 
-// Bits of the step's status word: why Adam skips this step.
+// Bits of the step's status word (status[0]): why Adam skips this step.
 TRAIN_CONST(STEP_NONFINITE, kStepNonfinite, 1u)    // some gradient was NaN or infinite
-TRAIN_CONST(STEP_OVERFLOWED, kStepOverflowed, 2u)  // the view needed more tile entries than the buffers hold
+// The view needed more tile entries than the buffers hold, or a step before it did and has not
+// been run again yet (the overflow mark): the host queues a step behind the one on the GPU, so a
+// step recorded before its predecessor overflowed must change nothing either, and is run again
+// after it.
+TRAIN_CONST(STEP_OVERFLOWED, kStepOverflowed, 2u)
+// status[1], the overflow mark: set by a step whose frame overflowed, cleared only by the host when
+// it records the step again (DifferentiableRenderer::record_backward's clear_overflow_mark).
+TRAIN_CONST(STATUS_OVERFLOW_MARK, kStatusOverflowMark, 1u)
+TRAIN_CONST(STATUS_WORDS, kStatusWords, 2u)
 
 SHADER_NAMESPACE_END
 #undef TRAIN_CONST

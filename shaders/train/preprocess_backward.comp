@@ -104,8 +104,17 @@ void main() {
     const CameraParams cam = pc.camera.c;
     const uint n = cam.gaussian_count;
     const uint sh_floats = 3u * cam.sh_stride;
-    if (gl_GlobalInvocationID.x == 0u && pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity)
-        atomicOr(pc.status.v[0], STEP_OVERFLOWED);
+    // A frame that overflowed walked cut lists: its gradients are wrong, and it is run again, so
+    // it adds nothing to the densification sums either (they would count the step twice). A step
+    // queued behind one that overflowed does the same (parameter_layout.h, the overflow mark).
+    const bool overflowed = pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity;
+    if (overflowed || pc.status.v[STATUS_OVERFLOW_MARK] != 0u) {
+        if (gl_GlobalInvocationID.x == 0u) {
+            atomicOr(pc.status.v[0], STEP_OVERFLOWED);
+            if (overflowed) atomicOr(pc.status.v[STATUS_OVERFLOW_MARK], 1u);
+        }
+        return;
+    }
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
         if (pc.tiles_touched.v[i] == 0u) {
             write_zeros(n, i, sh_floats);

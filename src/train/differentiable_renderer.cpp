@@ -73,10 +73,17 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
       choice_(form_for(sums, form)),
       preprocess_backward_(std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c)),
       frame_(c),
-      status_(c, sizeof(uint32_t), gpu::MemoryKind::device, "training step status"),
-      readback_(c, (render::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::readback,
-                "training step readback") {
-    std::memset(readback_.mapped(), 0, readback_.size());
+      status_(c, kStatusWords * sizeof(uint32_t), gpu::MemoryKind::device, "training step status") {
+    for (gpu::Buffer& readback : readbacks_) {
+        readback = gpu::Buffer(c, (render::kCounterCount + 1) * sizeof(uint32_t), gpu::MemoryKind::readback,
+                               "training step readback");
+        std::memset(readback.mapped(), 0, readback.size());
+    }
+    // The overflow mark starts clear; only steps recorded again after an overflow clear it.
+    gpu::CommandStream clear(c, 0);
+    clear.begin();
+    clear.fill(status_, 0);
+    clear.submit_and_wait();
     if (sums == GradientSums::fixed_point) {
         if (!c.info().int64_atomics)
             throw InputError("--deterministic", c.info().name + " has no 64-bit buffer atomics, which its "
@@ -161,14 +168,14 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
 }
 
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
-                                             VkDeviceAddress pixel_grad) {
+                                             VkDeviceAddress pixel_grad, bool clear_overflow_mark) {
     auto& f = frame_;
     choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
     const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
     stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * 4);
     if (blend_backward_fixed_) stream.fill(splat_grads_fixed_, 0, 0, uint64_t(grad_floats) * 8);
-    stream.fill(status_, 0);
+    stream.fill(status_, 0, 0, clear_overflow_mark ? VK_WHOLE_SIZE : sizeof(uint32_t));
     stream.barrier();
     const BlendBackwardPush backward{.camera = f.camera.address(),
                                      .ranges = f.ranges.address(),
@@ -207,9 +214,9 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     stream.mark("preprocess backward");
 }
 
-void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream) {
+void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream, int slot) {
     // A frame that ran out of tile entries walked cut lists: its time says nothing.
-    if (status() & kStepOverflowed) return;
+    if (status(slot) & kStepOverflowed) return;
     // The stage's label says which form ran: the Trainer records the next step, perhaps in the
     // other form, before it learns from this one.
     for (const auto& stage : stream.stage_times())
@@ -221,23 +228,25 @@ void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream) {
     choice_.untimed();
 }
 
-void DifferentiableRenderer::record_readback(gpu::CommandStream& stream) {
-    stream.copy(frame_.counters, readback_, render::kCounterCount * sizeof(uint32_t));
-    stream.copy(status_, readback_, sizeof(uint32_t), 0, render::kCounterCount * sizeof(uint32_t));
+void DifferentiableRenderer::record_readback(gpu::CommandStream& stream, int slot) {
+    const gpu::Buffer& readback = readbacks_.at(size_t(slot));
+    stream.copy(frame_.counters, readback, render::kCounterCount * sizeof(uint32_t));
+    stream.copy(status_, readback, sizeof(uint32_t), 0, render::kCounterCount * sizeof(uint32_t));
 }
 
-uint32_t DifferentiableRenderer::entries_needed() const {
-    const uint32_t needed = static_cast<const uint32_t*>(readback_.mapped())[render::kCounterEntriesNeeded];
+uint32_t DifferentiableRenderer::entries_needed(int slot) const {
+    const uint32_t needed =
+        static_cast<const uint32_t*>(readbacks_.at(size_t(slot)).mapped())[render::kCounterEntriesNeeded];
     render::check_entries_sortable(needed);
     return needed;
 }
 
-uint32_t DifferentiableRenderer::visible() const {
-    return static_cast<const uint32_t*>(readback_.mapped())[render::kCounterVisible];
+uint32_t DifferentiableRenderer::visible(int slot) const {
+    return static_cast<const uint32_t*>(readbacks_.at(size_t(slot)).mapped())[render::kCounterVisible];
 }
 
-uint32_t DifferentiableRenderer::status() const {
-    return static_cast<const uint32_t*>(readback_.mapped())[render::kCounterCount];
+uint32_t DifferentiableRenderer::status(int slot) const {
+    return static_cast<const uint32_t*>(readbacks_.at(size_t(slot)).mapped())[render::kCounterCount];
 }
 
 uint64_t DifferentiableRenderer::device_bytes() const {
@@ -254,7 +263,7 @@ void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Ca
             render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false, entry_capacity());
         stream.begin();
         record_forward(stream, scene, params);
-        record_backward(stream, scene, pixel_grad);
+        record_backward(stream, scene, pixel_grad, true);  // nothing is queued: no overflow is pending
         record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();

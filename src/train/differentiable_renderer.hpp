@@ -8,6 +8,7 @@
 // shaders/train/{train_activate,blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,
 // blend_backward_per_splat,blend_backward_per_splat_cas,splat_grads_from_fixed,
 // preprocess_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -87,26 +88,32 @@ public:
     // capacity filled in by the caller): leaves colour and alpha in color_alpha().
     void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params);
     // The gradients of every raw parameter into scene.grads, from dL/d rgb per pixel (vec4, at
-    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits. The blend
+    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits. With
+    // `clear_overflow_mark` it clears the overflow mark too (shaders/train/parameter_layout.h):
+    // for a step recorded again after an overflow, with no step queued before it. The blend
     // backward runs in blend_backward_choice().next()'s form.
-    void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad);
-    // After the submission of a record_backward and record_readback: its blend backward's time, for
-    // the choice of form (none from a frame that overflowed its tile entries).
-    void learn_timings(const gpu::CommandStream& stream);
+    void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad,
+                         bool clear_overflow_mark);
+    // After the submission of a record_backward and record_readback into `slot`: its blend
+    // backward's time, for the choice of form (none from a frame that overflowed its tile entries).
+    void learn_timings(const gpu::CommandStream& stream, int slot = 0);
     const BlendBackwardChoice& blend_backward_choice() const { return choice_; }
-    // Copies the frame counters and the step status to the host-visible readback (after the
-    // submission: counters(), status()).
-    void record_readback(gpu::CommandStream& stream);
+    // Host-visible readbacks, one per step that may be on the device at once (the Trainer queues
+    // a step behind the one running).
+    static constexpr int kReadbackSlots = 2;
+    // Copies the frame counters and the step status to readback `slot` (after the submission:
+    // entries_needed(slot), visible(slot), status(slot)).
+    void record_readback(gpu::CommandStream& stream, int slot = 0);
     // Forward and backward of one view to fixed pixel gradients (vec4 per pixel at `pixel_grad`) in
     // one submission, re-run with grown tile entries until the frame fits; waits. For callers that
     // want the gradients of a loss of their own (train::render_gradients, the tests).
     void backpropagate(const TrainableScene& scene, const Camera& camera, const RenderSettings& settings,
                        VkDeviceAddress pixel_grad);
-    // The last step's tile entries; throws GpuError when more than one frame can sort
-    // (render::check_entries_sortable).
-    uint32_t entries_needed() const;
-    uint32_t visible() const;
-    uint32_t status() const;
+    // The tile entries of the step read back into `slot`; throws GpuError when more than one frame
+    // can sort (render::check_entries_sortable).
+    uint32_t entries_needed(int slot = 0) const;
+    uint32_t visible(int slot = 0) const;
+    uint32_t status(int slot = 0) const;
 
     const gpu::Buffer& color_alpha() const { return frame_.color_alpha; }
     const gpu::Buffer& status_buffer() const { return status_; }
@@ -140,7 +147,8 @@ private:
     gpu::Buffer render_params_, splat_grads_;      // per Gaussian
     gpu::Buffer splat_grads_fixed_;                // per Gaussian, fixed_point sums only
     gpu::Buffer transmittance_, last_;             // per pixel
-    gpu::Buffer status_, readback_;
+    gpu::Buffer status_;
+    std::array<gpu::Buffer, kReadbackSlots> readbacks_;
     uint32_t tiles_x_ = 0, tiles_y_ = 0;
 };
 

@@ -1,6 +1,7 @@
 #include "train/loss_passes.hpp"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 #include <string>
 
@@ -25,11 +26,14 @@ struct LossPasses::Impl {
     const gpu::Context& context;
     gpu::Kernel<shader::train::LossKernel> kernel;
     gpu::Buffer partials;          // device scratch, grown to the largest image recorded
-    gpu::Buffer readback;          // the partials of the last record(), for last()
-    // What last() needs of the last record().
-    uint32_t groups = 0;
-    double pixel_channels = 0;  // 3 * width * height
-    double ssim_weight = 0;
+    // Per readback slot: the partials of the last record() into it, and what last() needs of it.
+    struct Readback {
+        gpu::Buffer partials;
+        uint32_t groups = 0;
+        double pixel_channels = 0;  // 3 * width * height
+        double ssim_weight = 0;
+    };
+    std::array<Readback, LossPasses::kReadbackSlots> readbacks;
 
     explicit Impl(const gpu::Context& c)
         : context(c),
@@ -46,7 +50,7 @@ LossPasses::LossPasses(const gpu::Context& context) : impl_(std::make_unique<Imp
 
 LossPasses::~LossPasses() = default;
 
-void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
+void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs, int slot) {
     const uint64_t pixels = uint64_t(inputs.width) * inputs.height;
     if (pixels == 0) throw std::invalid_argument("training loss: the image is empty");
     // The kernel indexes pixels with 32-bit integers.
@@ -59,10 +63,11 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
     const uint32_t strips = tiles_x * ((tiles_y + kSegmentTiles - 1) / kSegmentTiles);
     const uint32_t groups = std::min(strips, kMaxGroups);
     d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
-    d.reserve(d.readback, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
-    d.groups = groups;
-    d.pixel_channels = 3.0 * double(pixels);
-    d.ssim_weight = inputs.ssim_weight;
+    Impl::Readback& readback = d.readbacks.at(size_t(slot));
+    d.reserve(readback.partials, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
+    readback.groups = groups;
+    readback.pixel_channels = 3.0 * double(pixels);
+    readback.ssim_weight = inputs.ssim_weight;
 
     const shader::train::LossPush push{
         .rendered = inputs.rendered,
@@ -75,19 +80,19 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs) {
         .tiles_y = tiles_y,
         .strips = strips,
         .ssim_weight = inputs.ssim_weight,
-        .inv_count = float(1.0 / d.pixel_channels),
+        .inv_count = float(1.0 / readback.pixel_channels),
     };
     stream.dispatch(d.kernel, push, groups);
     stream.barrier();
-    stream.copy(d.partials, d.readback, groups * sizeof(Partial));
+    stream.copy(d.partials, readback.partials, groups * sizeof(Partial));
     stream.barrier_before_host_read();
 }
 
-LossValue LossPasses::last() const {
-    const Impl& d = *impl_;
+LossValue LossPasses::last(int slot) const {
+    const Impl::Readback& d = impl_->readbacks.at(size_t(slot));
     if (d.groups == 0) return {};
     // In double, in workgroup order: the same sums on every run.
-    const auto* partials = static_cast<const Partial*>(d.readback.mapped());
+    const auto* partials = static_cast<const Partial*>(d.partials.mapped());
     double l1 = 0, ssim = 0, mse = 0;
     for (uint32_t g = 0; g < d.groups; ++g) {
         l1 += partials[g].l1;

@@ -41,15 +41,19 @@ public:
     LossPasses(const LossPasses&) = delete;
     LossPasses& operator=(const LossPasses&) = delete;
 
+    // Host-visible buffers the sums are copied to, one per step that may be on the device at once
+    // (the Trainer queues a step behind the one running).
+    static constexpr int kReadbackSlots = 2;
+
     // Records the loss and its gradient; grows its scratch buffers for the image size
-    // first (so call it outside any recording that other frames still use). Copies the sums to a
-    // host-visible buffer of its own. The caller records a barrier before it (the rendered image
-    // and the photo must be visible to shaders) and after it (the gradient is written by its
-    // dispatch). Throws std::invalid_argument for an empty image, or one of 2^32 pixels or more
-    // (the kernel indexes with 32 bits).
-    void record(gpu::CommandStream& stream, const LossInputs& inputs);
-    // The sums of the last recorded loss, once its submission has finished.
-    LossValue last() const;
+    // first (so call it outside any recording that other frames still use). Copies the sums to
+    // readback `slot` (0 .. kReadbackSlots - 1). The caller records a barrier before it (the
+    // rendered image and the photo must be visible to shaders) and after it (the gradient is
+    // written by its dispatch). Throws std::invalid_argument for an empty image, or one of 2^32
+    // pixels or more (the kernel indexes with 32 bits).
+    void record(gpu::CommandStream& stream, const LossInputs& inputs, int slot = 0);
+    // The sums of the last loss recorded into readback `slot`, once its submission has finished.
+    LossValue last(int slot = 0) const;
     // Device bytes its scratch holds: the per-workgroup sums (no per-pixel maps).
     uint64_t device_bytes() const;
 

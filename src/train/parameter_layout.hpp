@@ -24,5 +24,6 @@ using shader::train::kDensifyStride;   // gradient norm sum, views, max radius
 using shader::train::kSplatGradStride;
 using shader::train::kStepNonfinite;
 using shader::train::kStepOverflowed;
+using shader::train::kStatusWords;
 
 }  // namespace vksplat::train

@@ -1,6 +1,9 @@
 // Trainer::submit prepares a step while the one before runs: the same steps as Trainer::step,
 // byte for byte, with every result kept in order, through overflowed frames, densification, a
 // view of another size and the blend backward's timing of both forms; the training loop's use.
+#include "train/checkpoint_file.hpp"  // first: its volk must come before the public headers' Vulkan
+#include "train/parameter_layout.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -113,6 +116,84 @@ TEST_F(PipelinedSteps, GiveTheSynchronousStepsBytes) {
     EXPECT_TRUE(same_bytes(pipelined.positions, synchronous.positions));
     EXPECT_TRUE(same_bytes(pipelined.log_scales, synchronous.log_scales));
     EXPECT_TRUE(same_bytes(pipelined.rotations, synchronous.rotations));
+    EXPECT_TRUE(same_bytes(pipelined.opacity_logits, synchronous.opacity_logits));
+    EXPECT_TRUE(same_bytes(pipelined.sh, synchronous.sh));
+}
+
+// Small splats ahead of forward_camera and, 3 units to its left, 24 large ones: seen from the
+// origin looking left (96 x 80) they cover the view, far more tile entries than a trainer starts
+// with (4 a Gaussian), while the straight view of the same size fits them.
+struct OverflowingView {
+    GaussianCloud start = random_scene(3, 24, 1, 4.0f, 6.0f, 0.05f, 0.2f, 1.0f);
+    Camera left = Camera::look_at({0.0, 0.0, 0.0}, {-3.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, 96, 80, 80.0, 80.0);
+    Camera straight = forward_camera(96, 80, 80.0);
+    OverflowingView() {
+        for (int k = 0; k < 24; ++k)
+            add_splat(start, {.position = {-3.0, 0.1 * (k % 5) - 0.2, 0.1 * (k / 5) - 0.25},
+                              .scale = {0.6, 0.6, 0.6},
+                              .opacity = 0.3,
+                              .color = {0.2 + 0.03 * k, 0.5, 0.8 - 0.03 * k}});
+    }
+};
+
+// A step whose frame overflowed runs again: its first attempt adds nothing to the densification
+// sums, which would otherwise count the step twice.
+TEST_F(PipelinedSteps, AnOverflowedAttemptAddsNothingToTheDensificationSums) {
+    const OverflowingView scene;
+    train::Trainer trainer(context(), scene.start, {});
+    const train::Photo dark{96, 80, std::vector<uint32_t>(96 * 80, 0xff102030u)};
+    EXPECT_GT(trainer.step(scene.left, dark).attempts, 1u);
+    const fs::path path = fs::temp_directory_path() / "vksplat_overflow_sums.checkpoint";
+    trainer.save_checkpoint(path);
+    const train::CheckpointData data = train::read_checkpoint(path, {});
+    fs::remove(path);
+    size_t counted = 0;
+    for (size_t i = 0; i < trainer.size(); ++i) {
+        const float views = data.densify_sums[i * train::kDensifyStride + 1];
+        EXPECT_LE(views, 1.0f) << "Gaussian " << i;
+        counted += views == 1.0f;
+    }
+    EXPECT_GE(counted, 24u) << "the large splats were drawn";
+}
+
+// A step queued behind one that overflows runs after that one has run again, as it would have
+// without the queue: the looking-left step overflows; the straight step, queued behind it, fits,
+// and would otherwise update the scene first (Adam's moments then see the gradients in the other
+// order). Fixed-point sums, so that the order of additions cannot tell the runs apart.
+TEST_F(PipelinedSteps, AStepQueuedBehindAnOverflowRunsAfterIt) {
+    if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit buffer atomics on this device";
+    const OverflowingView scene;
+    const train::Photo dark{96, 80, std::vector<uint32_t>(96 * 80, 0xff102030u)};
+    const std::vector<const Camera*> order = {&scene.left, &scene.straight, &scene.straight, &scene.left,
+                                              &scene.straight};
+    train::TrainOptions options;
+    options.deterministic = true;
+    const auto run = [&](bool pipelined) {
+        train::Trainer trainer(context(), scene.start, options);
+        std::vector<train::StepResult> results;
+        for (const Camera* camera : order) {
+            if (pipelined) {
+                trainer.submit(*camera, dark);
+                for (auto& result : trainer.take_results()) results.push_back(std::move(result));
+            } else {
+                results.push_back(trainer.step(*camera, dark));
+            }
+        }
+        trainer.finish();
+        for (auto& result : trainer.take_results()) results.push_back(std::move(result));
+        return std::make_pair(trainer.cloud(), results);
+    };
+    const auto [synchronous, synchronous_results] = run(false);
+    const auto [pipelined, pipelined_results] = run(true);
+    ASSERT_EQ(synchronous_results.size(), order.size());
+    EXPECT_GT(synchronous_results[0].attempts, 1u) << "the looking-left view must overflow";
+    EXPECT_EQ(synchronous_results[1].attempts, 1u) << "the straight view must fit the entries it started with";
+    ASSERT_EQ(pipelined_results.size(), order.size());
+    for (size_t i = 0; i < order.size(); ++i) {
+        EXPECT_EQ(pipelined_results[i].loss, synchronous_results[i].loss) << "step " << i;
+        EXPECT_EQ(pipelined_results[i].attempts, synchronous_results[i].attempts) << "step " << i;
+    }
+    EXPECT_TRUE(same_bytes(pipelined.positions, synchronous.positions));
     EXPECT_TRUE(same_bytes(pipelined.opacity_logits, synchronous.opacity_logits));
     EXPECT_TRUE(same_bytes(pipelined.sh, synchronous.sh));
 }

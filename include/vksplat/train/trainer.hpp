@@ -4,9 +4,10 @@
 //   loss = (1 - lambda) L1 + lambda (1 - SSIM), lambda = 0.2, on the rendered picture against the photo;
 //   Adam over positions, log-scales, quaternions, opacity logits and SH, each group at its own rate.
 // A step is one submission: forward frame, loss, backward passes, Adam. submit() prepares a step
-// (copies its photo, records its commands) while the step before it runs on the GPU, and only then
-// waits for that one: the GPU does not idle while the host prepares. One step is on the GPU at a
-// time; its result arrives when the next is submitted, or by finish().
+// (copies its photo, records its commands) while the step before it runs on the GPU, queues it
+// behind that one and only then waits for that one: the GPU goes from step to step without waiting
+// for the host. The queue runs one step at a time; a step's result arrives when the next is
+// submitted, or by finish().
 //
 //   gpu::Context context;
 //   train::Trainer trainer(context, cloud, options);
@@ -179,7 +180,8 @@ public:
     // its result is returned, not kept for take_results().
     StepResult step(const Camera& camera, const Photo& photo);
     // The same iteration without waiting for it: records it (the photo is copied, so the caller
-    // may drop it), waits for the step in flight, keeps that one's result and submits this one.
+    // may drop it), submits it behind the step in flight, then waits for that one and keeps its
+    // result (one that overflowed its tile entries runs again first, and this one after it).
     // It runs with the SH degree and the position rate of the moment of this call. A step of
     // another image size than the one in flight waits for that one first (the buffers may grow).
     void submit(const Camera& camera, const Photo& photo);
