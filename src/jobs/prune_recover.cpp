@@ -55,7 +55,7 @@ uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t s
 
 uint64_t default_recover_iterations(double dropped) {
     // (fraction dropped, iterations), joined by straight lines; flat beyond the last.
-    constexpr std::array<std::pair<double, double>, 3> kKnots{{{0.5, 5000}, {0.8, 30000}, {0.9, 60000}}};
+    constexpr std::array<std::pair<double, double>, 3> kKnots{{{0.5, 5000}, {0.8, 50000}, {0.9, 60000}}};
     if (!(dropped > kKnots.front().first)) return uint64_t(kKnots.front().second);
     for (size_t i = 1; i < kKnots.size(); ++i) {
         const auto [x0, y0] = kKnots[i - 1];

@@ -26,9 +26,9 @@ using io::test::expect_input_error;
 TEST(DefaultRecoverIterations, GrowWithTheFractionDropped) {
     EXPECT_EQ(jobs::default_recover_iterations(0.0), 5000u);
     EXPECT_EQ(jobs::default_recover_iterations(0.5), 5000u);
-    EXPECT_EQ(jobs::default_recover_iterations(0.65), 18000u);  // halfway to 30,000, in whole thousands
-    EXPECT_EQ(jobs::default_recover_iterations(0.8), 30000u);
-    EXPECT_EQ(jobs::default_recover_iterations(0.85), 45000u);
+    EXPECT_EQ(jobs::default_recover_iterations(0.65), 28000u);  // halfway to 50,000, in whole thousands
+    EXPECT_EQ(jobs::default_recover_iterations(0.8), 50000u);
+    EXPECT_EQ(jobs::default_recover_iterations(0.85), 55000u);
     EXPECT_EQ(jobs::default_recover_iterations(0.9), 60000u);
     EXPECT_EQ(jobs::default_recover_iterations(0.99), 60000u);
     EXPECT_EQ(jobs::default_recover_iterations(1.0), 60000u);

@@ -228,7 +228,7 @@ void register_prune(CLI::App& app, Action& action) {
     // "auto" is what a bare --recover reads: CLI11 checks the value it stands for like a given one.
     auto* recover = command->add_option("--recover", args->recover,
                         "re-fit the kept Gaussians to the photos (needs --images) for N iterations, without N\n"
-                        "for 5,000 up to half dropped, rising to 30,000 at 80% and 60,000 at 90%; with\n"
+                        "for 5,000 up to half dropped, rising to 50,000 at 80% and 60,000 at 90%; with\n"
                         "--max-psnr-drop every probe is re-fitted, so the budget holds after re-fitting;\n"
                         "with --max-mb the count chosen is reached in the rounds (--rounds), its SH bands\n"
                         "are dropped again, and the file still fits")

@@ -18,9 +18,10 @@ namespace vksplat::jobs {
 // The defaults are the best of the schedules measured (benchmarks/RESULTS.md, issue 30): five
 // rounds, four of them 1,000 steps each and the last re-fitting for the rest, each keeping a
 // weighted sample by blend weight, each re-fit decaying the position rate from its initial to its
-// final value. H200, bonsai / lego, means of 3 seeds: 80% dropped -0.413 / -0.666 dB where three
-// equal rounds keeping the best lost -0.564 / -0.940 (one run); 90% -1.637 / -2.749 against
-// -2.017 / -3.124.
+// final value. H200, bonsai / lego, means of 3 seeds: 80% dropped -0.413 / -0.666 dB with 30,000
+// iterations where three equal rounds keeping the best lost -0.564 / -0.940 (one run), and
+// -0.196 / -0.649 with the 50,000 default_recover_iterations gives now; 90% -1.637 / -2.749
+// against -2.017 / -3.124.
 struct RecoverOptions {
     // Re-fit iterations in all, split over the rounds (round_iterations); unset: as many as
     // default_recover_iterations gives for the fraction dropped.
@@ -70,11 +71,11 @@ uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t s
 FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept);
 
 // The re-fit iterations when none are asked for, by the fraction of the Gaussians dropped (0..1):
-// 5,000 up to half dropped, then rising linearly to 30,000 at 80% and 60,000 at 90% and beyond,
-// in whole thousands. Measured on bonsai (issue 30, blend ranking, 3 rounds, decaying position
-// rate, H200): at 80% dropped 5,000 iterations lose 1.16 dB, 30,000 lose 0.58 (15 s); every
-// doubling gained about 0.22 dB at 80% and 0.29 at 90%, with no sign of levelling off by 30,000,
-// and 30,000 took 15 s at both, so 60,000 at 90% stay near half of a minute.
+// 5,000 up to half dropped, then rising linearly to 50,000 at 80% and 60,000 at 90% and beyond,
+// in whole thousands. Measured on bonsai (issue 30, H200): every doubling gained about 0.22 dB at
+// 80% and 0.29 at 90%, with no sign of levelling off; with the default rounds, 80% dropped lost
+// 0.361 / 0.261 / 0.161 dB at 30,000 / 40,000 / 50,000 (seed 0), and 50,000 over seeds 0-2
+// -0.196 on average in 58.6 s on an H200 (the issue's 60 s a re-fit); 90% with 60,000 took 58.4 s.
 uint64_t default_recover_iterations(double dropped);
 
 // The seconds round r (1-based) of `rounds` may take when `remaining` seconds of the budget are
