@@ -75,7 +75,10 @@ vec3 sh_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
         }
     }
     vec3 dl_ddir = vec3(0.0);
-    for (uint k = 0u; k < count; ++k) {
+    // A constant trip count, unrolled, so that basis and dbasis are indexed by constants and stay
+    // in registers: indexed by a loop variable they would live in local memory.
+    [[unroll]] for (uint k = 0u; k < 16u; ++k) {
+        if (k >= count) break;
         const uint at = base + 3u * k;
         const vec3 coefficient = vec3(pc.raw.v[at], pc.raw.v[at + 1u], pc.raw.v[at + 2u]);
         const vec3 grad = basis[k] * dl_dcolor;
