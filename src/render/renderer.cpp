@@ -81,6 +81,8 @@ struct Renderer::Impl {
     // Built on first use (chunked frames).
     std::unique_ptr<gpu::Kernel<shader::render::BlendCarryKernel>> blend_carry;
     std::unique_ptr<gpu::Kernel<shader::render::BlendStatsCarryKernel>> blend_stats_carry;
+    // Built on first use (render_stats_totals).
+    std::unique_ptr<gpu::Kernel<shader::render::StatsTotalsKernel>> stats_totals;
     bool recorded = false;                               // record() was called: frames may be in flight
     render::GpuScene scene;  // params and sh are empty while the scene lives on the host only (chunked frames)
     // Device memory the renderer may hold (SceneStorage::memory_budget, else the context's).
@@ -674,7 +676,9 @@ GaussianTotals Renderer::render_stats_totals(const std::vector<Camera>& cameras,
     std::optional<render::StatsTotals> on_device;
     if (!d.has_host && d.scene.params) {
         d.stats_kernel();  // the device check
-        on_device.emplace(d.context, d.scene.count);
+        if (!d.stats_totals)
+            d.stats_totals = std::make_unique<gpu::Kernel<shader::render::StatsTotalsKernel>>(d.context);
+        on_device.emplace(d.context, *d.stats_totals, d.scene.count);
     }
     for (size_t v = 0; v < cameras.size(); ++v) {
         d.run(cameras[v], with_stats, false, on_device ? &*on_device : nullptr);

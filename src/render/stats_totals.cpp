@@ -5,8 +5,9 @@
 
 namespace vksplat::render {
 
-StatsTotals::StatsTotals(const gpu::Context& context, uint32_t count)
-    : context_(context), count_(std::max(count, 1u)), kernel_(context) {
+StatsTotals::StatsTotals(const gpu::Context& context, const gpu::Kernel<shader::render::StatsTotalsKernel>& kernel,
+                         uint32_t count)
+    : context_(context), count_(std::max(count, 1u)), kernel_(kernel) {
     const uint64_t n = count_;
     const auto buffer = [&](uint64_t bytes, const char* name) {
         return gpu::Buffer(context, n * bytes, gpu::MemoryKind::device, name);
@@ -21,7 +22,8 @@ StatsTotals::StatsTotals(const gpu::Context& context, uint32_t count)
 
 void StatsTotals::record_add(gpu::CommandStream& stream, const FrameResources& frame, uint32_t entry_capacity) {
     if (!zeroed_) {
-        for (const gpu::Buffer* b : {&weight_low_, &weight_high_, &max_weight_, &pixels_, &radius_squared_, &views_visible_})
+        for (const gpu::Buffer* b :
+             {&weight_low_, &weight_high_, &max_weight_, &pixels_, &radius_squared_, &views_visible_})
             stream.fill(*b, 0);
         stream.barrier();
         zeroed_ = true;

@@ -14,8 +14,10 @@ namespace vksplat::render {
 
 class StatsTotals {
 public:
-    // Totals of `count` Gaussians, zeroed by the first record_add's command buffer.
-    StatsTotals(const gpu::Context& context, uint32_t count);
+    // Totals of `count` Gaussians, zeroed by the first record_add's command buffer; `kernel` (the
+    // renderer's, built once) adds a view.
+    StatsTotals(const gpu::Context& context, const gpu::Kernel<shader::render::StatsTotalsKernel>& kernel,
+                uint32_t count);
 
     // Records the adding of the frame's statistics (FrameResources::stat_*, means_depth) after its
     // blend; it adds nothing when the frame needed more than `entry_capacity` tile entries.
@@ -28,7 +30,7 @@ private:
     const gpu::Context& context_;
     uint32_t count_;
     bool zeroed_ = false;
-    gpu::Kernel<shader::render::StatsTotalsKernel> kernel_;
+    const gpu::Kernel<shader::render::StatsTotalsKernel>& kernel_;
     gpu::Buffer weight_low_, weight_high_, max_weight_, pixels_, radius_squared_, views_visible_;
 };
 

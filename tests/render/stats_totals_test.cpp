@@ -20,7 +20,8 @@ class StatsTotals : public GpuTest {};
 // (dropped by sanitising, so the totals must be indexed like the input).
 GaussianCloud mixed_scene() {
     GaussianCloud cloud = random_scene(61, 600, 2);
-    for (const GaussianCloud& extra : {random_scene(62, 60, 2, -5.0f, -1.0f), random_scene(63, 50, 2, 2.0f, 3.0f, 0.5f, 1.0f)})
+    for (const GaussianCloud& extra :
+         {random_scene(62, 60, 2, -5.0f, -1.0f), random_scene(63, 50, 2, 2.0f, 3.0f, 0.5f, 1.0f)})
         for (size_t i = 0; i < extra.size(); ++i) cloud.append(extra, i);
     cloud.positions[3 * 7] = std::numeric_limits<float>::quiet_NaN();
     return cloud;
