@@ -170,16 +170,15 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     const RecoverOptions recover = recover_options(options, result);
     const PhotoSource photos = recover_photos(options);
     const gpu::Context& context = renderer.context();
-    const auto report = [&](int round, const train::LoopStatus& status) {
-        if (progress.refit) progress.refit(round, status);
-    };
     if (auto budget = std::get_if<prune::QualityBudget>(&options.selector)) {
         // One round per probe: the bisection re-fits every probe it measures, so rounds (each
         // scoring every training view again) would multiply the whole search's cost.
         prune::QualityBudget refitted = *budget;
         refitted.refit = [&](const GaussianCloud& model) {
             return finetune_scene(context, model, cameras, photos, single_refit(recover, cloud.size(), model.size()), {},
-                                  [&](const train::LoopStatus& s) { report(1, s); })
+                                  [&](const train::LoopStatus& s) {
+                                      if (progress.refit) progress.refit(1, s);
+                                  })
                 .cloud;
         };
         result.budget = prune::fit_quality_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates),
@@ -193,7 +192,7 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
     }
     const size_t keep = prune::count_kept(select(result, renderer, cloud, scored, targets, options, progress));
     RecoverResult recovered = prune_and_recover(context, renderer, cloud, scored.scores, scored.candidates, keep,
-                                                cameras, photos, recover, {}, report);
+                                                cameras, photos, recover, {}, progress.refit);
     report_rounds(result, recovered);
     return std::move(recovered.cloud);
 }

@@ -3,6 +3,7 @@
 
 #include <numbers>
 #include <string>
+#include <utility>
 
 #include "vksplat/error.hpp"
 #include "vksplat/prune/fisher.hpp"
@@ -22,17 +23,17 @@ ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std:
     }
     renderer.set_scene(cloud);
     const size_t steps = picked.size() * (fisher ? 2 : 1);
-    const GaussianTotals sums = renderer.render_stats_totals(picked, settings, [&](size_t done, size_t) {
+    GaussianTotals sums = renderer.render_stats_totals(picked, settings, [&](size_t done, size_t) {
         if (progress) progress(done, steps);
     });
 
     const std::vector<float> opacity = opacities(cloud);
     ViewTotals totals(cloud.size());
     totals.views = sums.views;
-    totals.blend = sums.blend_weight;
-    totals.blend_max = sums.max_weight;
-    totals.pixels = sums.pixels;
-    totals.views_visible = sums.views_visible;
+    totals.blend = std::move(sums.blend_weight);
+    totals.blend_max = std::move(sums.max_weight);
+    totals.pixels = std::move(sums.pixels);
+    totals.views_visible = std::move(sums.views_visible);
     for (size_t i = 0; i < cloud.size(); ++i)
         totals.footprint[i] = double(opacity[i]) * std::numbers::pi * double(sums.radius_squared[i]);
     if (fisher) {

@@ -1,7 +1,6 @@
 #include "render/stats_totals.hpp"
 
 #include <algorithm>
-#include <cstring>
 
 namespace vksplat::render {
 
