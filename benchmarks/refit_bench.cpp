@@ -21,6 +21,7 @@
 //     the test views' regions)
 #include <CLI/CLI.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <cmath>
 #include <map>
@@ -83,7 +84,7 @@ int main(int argc, char** argv) {
     app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop; default: prune --recover's)");
     std::string method = "blend";
-    app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend");
+    app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend, fisher (on the CPU)");
     uint64_t round_spacing = recover_defaults.round_spacing;
     app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (0: an equal share)");
     bool sampled = recover_defaults.sampled;
@@ -183,10 +184,12 @@ int main(int argc, char** argv) {
                         result.after->mean_psnr - result.before->mean_psnr);
         } else {
             const auto train = jobs::default_train_views(cameras.size(), test);
-            const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings);
             const prune::ScoreMethod score_method = prune::parse_score_method(method);
-            if (score_method == prune::ScoreMethod::fisher)
-                throw InputError("--method fisher", "is scored on the CPU; refit_bench ranks from the GPU's totals");
+            const auto scoring_start = std::chrono::steady_clock::now();
+            const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings, {},
+                                                               prune::needs_fisher(score_method));
+            std::printf("scoring %zu views: %.1f s\n", train.size(),
+                        std::chrono::duration<double>(std::chrono::steady_clock::now() - scoring_start).count());
             const std::vector<float> scores = prune::score(cloud, totals, score_method);
             const prune::KeepMask candidates = prune::lossless_mask(totals);
             const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
