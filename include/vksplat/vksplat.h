@@ -256,8 +256,9 @@ typedef enum vksplat_score_method {
     VKSPLAT_SCORE_BLEND_MAX = 3,    /* max over pixels and views of alpha * T */
     VKSPLAT_SCORE_VOLUME_BLEND = 4, /* blend weighted by volume (LightGaussian) */
     VKSPLAT_SCORE_RANDOM = 5,       /* seeded uniform: the baseline the others must beat */
-    VKSPLAT_SCORE_FISHER = 6        /* log det of the pictures' Fisher information in mean and log-scale
+    VKSPLAT_SCORE_FISHER = 6,       /* log det of the pictures' Fisher information in mean and log-scale
                                      * (PUP 3D-GS), computed on the CPU from the views */
+    VKSPLAT_SCORE_BLEND_MIX = 7     /* sqrt(blend * blend max): the best ranking for a re-fit */
 } vksplat_score_method;
 
 typedef struct vksplat_prune_options {

@@ -28,6 +28,7 @@ vksplat::prune::ScoreMethod to_method(vksplat_score_method method) {
         case VKSPLAT_SCORE_VOLUME_BLEND: return ScoreMethod::volume_blend;
         case VKSPLAT_SCORE_RANDOM: return ScoreMethod::random;
         case VKSPLAT_SCORE_FISHER: return ScoreMethod::fisher;
+        case VKSPLAT_SCORE_BLEND_MIX: return ScoreMethod::blend_mix;
     }
     throw std::invalid_argument("options->method " + std::to_string(int(method)) + " is no vksplat_score_method");
 }

@@ -16,11 +16,12 @@ struct MethodName {
     ScoreMethod method;
     std::string_view name;
 };
-constexpr std::array<MethodName, 7> kMethods = {{
+constexpr std::array<MethodName, 8> kMethods = {{
     {ScoreMethod::opacity, "opacity"},
     {ScoreMethod::footprint, "footprint"},
     {ScoreMethod::blend, "blend"},
     {ScoreMethod::blend_max, "blend-max"},
+    {ScoreMethod::blend_mix, "blend-mix"},
     {ScoreMethod::volume_blend, "volume-blend"},
     {ScoreMethod::random, "random"},
     {ScoreMethod::fisher, "fisher"},
@@ -99,6 +100,11 @@ std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, S
         case ScoreMethod::footprint: return as_float(totals.footprint);
         case ScoreMethod::blend: return as_float(totals.blend);
         case ScoreMethod::blend_max: return totals.blend_max;
+        case ScoreMethod::blend_mix: {
+            std::vector<float> scores(cloud.size());
+            for (size_t i = 0; i < cloud.size(); ++i) scores[i] = float(std::sqrt(totals.blend[i] * totals.blend_max[i]));
+            return scores;
+        }
         case ScoreMethod::volume_blend: return volume_blend(cloud, totals);
         case ScoreMethod::random: return random_scores(cloud.size(), seed);
         case ScoreMethod::fisher:

@@ -20,8 +20,8 @@ class Scores : public GpuTest {};
 
 TEST(ScoreNames, RoundTripAndRefuseUnknownNames) {
     const std::vector<std::string> names = prune::score_method_names();
-    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "volume-blend", "random",
-                                               "fisher"}));
+    ASSERT_EQ(names, (std::vector<std::string>{"opacity", "footprint", "blend", "blend-max", "blend-mix",
+                                               "volume-blend", "random", "fisher"}));
     for (const auto& name : names) EXPECT_EQ(prune::to_string(prune::parse_score_method(name)), name);
     try {
         prune::parse_score_method("blend_max");
@@ -59,6 +59,10 @@ TEST(ScoreValues, ViewScoresReadTheTotals) {
     EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::blend), (std::vector<float>{3.5f, 0.25f}));
     EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::blend_max), (std::vector<float>{0.75f, 0.5f}));
     EXPECT_EQ(prune::score(cloud, totals, ScoreMethod::footprint), (std::vector<float>{100.0f, 7.0f}));
+    const auto mix = prune::score(cloud, totals, ScoreMethod::blend_mix);
+    ASSERT_EQ(mix.size(), 2u);
+    EXPECT_FLOAT_EQ(mix[0], float(std::sqrt(3.5 * 0.75)));
+    EXPECT_FLOAT_EQ(mix[1], float(std::sqrt(0.25 * 0.5)));
     EXPECT_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::blend), std::invalid_argument);
     EXPECT_NO_THROW(prune::score(cloud, prune::ViewTotals(3), ScoreMethod::opacity)) << "opacity reads no totals";
     EXPECT_THROW(prune::score(cloud, totals, ScoreMethod::fisher), InputError) << "totals gathered without fisher";

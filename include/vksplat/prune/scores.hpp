@@ -16,12 +16,13 @@ enum class ScoreMethod {
     footprint,     // sum over views of opacity * pi * r^2, r the projected radius in pixels
     blend,         // sum over every pixel of every view of alpha * T
     blend_max,     // max over pixels and views of alpha * T
+    blend_mix,     // sqrt(blend * blend_max): what a Gaussian adds overall and where it matters most
     volume_blend,  // blend * (V / V90)^0.1, V the product of the three scales (LightGaussian)
     random,        // seeded uniform in [0, 1): the baseline the others must beat
     fisher,        // log det of the Fisher information of the pictures in mean and log-scale (PUP 3D-GS, fisher.hpp)
 };
 
-// "opacity", "footprint", "blend", "blend-max", "volume-blend", "random", "fisher".
+// "opacity", "footprint", "blend", "blend-max", "blend-mix", "volume-blend", "random", "fisher".
 std::string_view to_string(ScoreMethod method);
 // Every method's name, in the order of the enum.
 std::vector<std::string> score_method_names();
