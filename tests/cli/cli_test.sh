@@ -357,6 +357,12 @@ expect finetune-resume-past-iters 0 "no steps are taken" -- "$vksplat" finetune 
 expect prune-recover 0 "test views (3) against the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 --rounds 2 --images "$work/photos3" \
   --background 1,1,1 -o "$work/recovered.ply"
+# Without --method: blend weight, or blend-mix with a re-fit (the best measured for each).
+expect prune-default-method 0 "Gaussians by blend on" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --ratio 0.5 -o "$work/default_method.ply"
+expect prune-recover-default-method 0 "Gaussians by blend-mix on" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/three.json" --ratio 0.5 --recover 6 --rounds 2 --images "$work/photos3" \
+  --background 1,1,1 -o "$work/recovered_mix.ply"
 expect prune-recover-needs-photos 2 "--recover: re-fits to the photos" -- "$vksplat" prune "$work/demo/demo.ply" \
   --cameras "$work/three.json" --method blend --ratio 0.5 --recover 6 -o "$work/recovered_nophotos.ply"
 # Each round after the first ranks the re-fitted model by fisher again, so it gathers fisher too.

@@ -37,6 +37,8 @@ struct KeepCount {
 using PruneSelector = std::variant<DropAtOrBelow, DropRatio, KeepCount, prune::QualityBudget, prune::SizeBudget>;
 
 struct PruneOptions {
+    // The ranking, of every re-fit round too. Blend weight is the best measured for a model used as
+    // pruned; with `recover`, set blend_mix (RecoverOptions::method says why), as the CLI does.
     prune::ScoreMethod method = prune::ScoreMethod::blend;
     PruneSelector selector = prune::QualityBudget{};
     std::vector<size_t> test_views;   // empty: default_test_views
