@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
                    "true: the position rate decays afresh from the settling on (the default)");
     app.add_flag("--budget-sampling", recipe.budget_sampling,
                  "the budget recipe removes a weighted random sample by blend weight, not the least");
+    std::string budget_score = std::string(prune::to_string(recipe.budget_score));
+    app.add_option("--budget-score", budget_score, "the budget recipe's ranking (a prune --method)");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
     bool deterministic = false;
     app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");
@@ -81,6 +83,7 @@ int main(int argc, char** argv) {
         recipe.densify.max_gaussians = max_gaussians;
         if (densify_until) recipe.densify_until = recipe.budget.densify_until = *densify_until;
         recipe.strategy = jobs::parse_densify_strategy(strategy);
+        recipe.budget_score = prune::parse_score_method(budget_score);
         if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");
         recipe.budget.ranking = ranking == "sum" ? train::DensifyRanking::gradient_sum : train::DensifyRanking::mean_gradient;
         gpu::Context context(gpu::ContextOptions{device, false, 0});

@@ -83,19 +83,21 @@ GaussianCloud random_subset(const GaussianCloud& cloud, size_t count, uint64_t s
     return cloud.subset(keep);
 }
 
-// The budget recipe's importance: blend weight (Sum alpha T over every pixel) over the training
-// views, the prune module's "blend" score, rendered on the trainer's current Gaussians.
+// The budget recipe's importance: a prune module score (recipe.budget_score) over the training
+// views, rendered on the trainer's current Gaussians.
 train::Importance importance_over(const gpu::Context& context, const TrainingData& data, const TrainOptions& options) {
     RenderSettings settings;
     settings.background = options.background;
     // A renderer of its own each time, so that its device memory is held only while it scores.
     const bool sampling = options.recipe.budget_sampling;
-    return [&context, settings, &data, sampling, seed = options.seed](const GaussianCloud& cloud) {
+    const prune::ScoreMethod method = options.recipe.budget_score;
+    return [&context, settings, &data, sampling, method, seed = options.seed](const GaussianCloud& cloud) {
         Renderer renderer(context);
-        const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings);
-        std::vector<float> blend = prune::score(cloud, totals, prune::ScoreMethod::blend);
+        const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings,
+                                                           {}, prune::needs_fisher(method));
+        std::vector<float> scores = prune::score(cloud, totals, method, seed);
         // Seeded by the count too, which differs between rounds and is the same in a resumed run.
-        return sampling ? prune::sampling_keys(blend, seed ^ (uint64_t(cloud.size()) << 20)) : blend;
+        return sampling ? prune::sampling_keys(scores, seed ^ (uint64_t(cloud.size()) << 20)) : scores;
     };
 }
 
@@ -136,7 +138,7 @@ std::string budget_text(const TrainRecipe& r) {
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
            std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
            ", settling " + std::to_string(b.settle_rounds) + " x " + std::to_string(b.settle_spacing) +
-           (b.restart_decay ? " restarting the decay" : "") + (r.budget_sampling ? ", sampling" : "") + ", start " +
+           (b.restart_decay ? " restarting the decay" : "") + (r.budget_sampling ? ", sampling" : "") + ", scored by " + std::string(prune::to_string(r.budget_score)) + ", start " +
            std::to_string(r.start_fraction);
 }
 

@@ -26,6 +26,7 @@
 #include "vksplat/io/dataset.hpp"
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/jobs/finetune.hpp"
+#include "vksplat/prune/scores.hpp"
 #include "vksplat/train/budget_strategy.hpp"
 #include "vksplat/train/mcmc_strategy.hpp"
 #include "vksplat/train/strategy.hpp"
@@ -53,6 +54,9 @@ struct TrainRecipe : train::ReferenceSchedule {
     // The budget recipe removes a weighted random sample by blend weight (prune::sampling_keys,
     // seeded by the run's seed and the count) rather than the least important: see sampling_keys.
     bool budget_sampling = false;
+    // The score by which the budget recipe's pruning and settling rank the Gaussians, over the
+    // training views (prune::score).
+    prune::ScoreMethod budget_score = prune::ScoreMethod::blend;
     // The MCMC recipe's terms; its budget is densify.max_gaussians too, and it starts from the same
     // subset of the starting points.
     train::McmcSchedule mcmc;
