@@ -181,8 +181,9 @@ SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, std::span<c
                      const jobs::PhotoSource& photos, const Targets& targets, const SweepResult& result,
                      const SweepOptions& options, Reporter& reporter) {
     jobs::RecoverOptions recover = recover_schedule(result, options);
-    recover.method = method == kClusterMethod ? prune::ScoreMethod::blend : prune::parse_score_method(method);
-    // Cluster scores rank whole clusters: the first round cuts them whole, as cluster pruning does.
+    // Cluster scores rank whole clusters: the first round cuts them whole, as cluster pruning does;
+    // its later rounds rank by the re-fit's default (recover_schedule's).
+    if (method != kClusterMethod) recover.method = prune::parse_score_method(method);
     if (method == kClusterMethod) recover.sampled = false;
     // One stage per re-fit, its iterations counted over all its rounds.
     const std::string stage = "re-fit of " + method + " at " + fraction_label(pruned.fraction) + " dropped";
