@@ -34,6 +34,9 @@ void check_options(const PruneOptions& options) {
     }
     if (options.sh_degree && (*options.sh_degree < 0 || *options.sh_degree > 3))
         throw InputError("--sh-degree " + std::to_string(*options.sh_degree), "must lie in 0..3");
+    if (options.sh_precision)
+        prune::check_sh_precision(*options.sh_precision, "--sh-bits " + std::to_string(options.sh_precision->degree1_bits) +
+                                                             "," + std::to_string(options.sh_precision->higher_bits));
     if (const auto* ratio = std::get_if<DropRatio>(&options.selector); ratio && !(ratio->ratio >= 0 && ratio->ratio <= 1))
         throw InputError("--ratio " + std::to_string(ratio->ratio), "must lie in [0, 1] (the fraction to drop)");
     if (const auto* threshold = std::get_if<DropAtOrBelow>(&options.selector); threshold && std::isnan(threshold->threshold))
@@ -47,12 +50,13 @@ void check_options(const PruneOptions& options) {
                          "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
 }
 
-// The size budget of options.selector in the output's format (prune/size_budget.hpp).
+// The size budget of options.selector in the output's format and SH precision (prune/size_budget.hpp).
 std::optional<prune::SizeBudget> size_budget(const PruneOptions& options) {
     const auto* size = std::get_if<prune::SizeBudget>(&options.selector);
     if (!size) return std::nullopt;
     prune::SizeBudget budget = *size;
     budget.format = io::scene_format_named(options.out);
+    if (options.sh_precision) budget.sh_precision = *options.sh_precision;
     return budget;
 }
 
@@ -252,6 +256,7 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
     } else {
         pruned = recover(result, renderer, cloud, cameras, scored, targets, options, progress);
     }
+    if (options.sh_precision) pruned = prune::with_sh_precision(pruned, *options.sh_precision);
     result.sh_degree_after = pruned.sh_degree;
     result.count_after = pruned.size();
     result.after = eval::measure_quality(renderer, pruned, targets, options.settings, true);

@@ -27,6 +27,12 @@ struct ShChoice {
 };
 
 // The choices size_budget.hpp lists, the unreduced one first.
+// `model` rounded to `precision`, or as it is at full precision (what an 8-bit SPZ writer rounds
+// anyway, and the other formats on their own grids).
+GaussianCloud at_precision(GaussianCloud model, const ShPrecision& precision) {
+    return precision == ShPrecision{} ? model : with_sh_precision(model, precision);
+}
+
 std::vector<ShChoice> sh_choices(int degree) {
     std::vector<ShChoice> choices;
     const int steps = 2 * degree;
@@ -101,7 +107,8 @@ GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double
                            double sh_share, const SizeBudget& budget) {
     if (scores.size() != refitted.size())
         throw std::invalid_argument("prune::fit_refitted: the scores are not of the re-fitted model");
-    const GaussianCloud reduced = with_sh_share_dropped(refitted, weights, sh_share);
+    const GaussianCloud reduced =
+        at_precision(with_sh_share_dropped(refitted, weights, sh_share), budget.sh_precision);
     const Ranking ranking(scores, keep_all(reduced.size()));
     const size_t kept = largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
         return scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
@@ -122,7 +129,7 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
         GaussianCloud model = cloud.subset(keep);
         if (choice.degree != model.sh_degree) model = model.with_sh_degree(choice.degree);
         if (choice.share > 0) model = with_sh_share_dropped(model, kept_values(weights, keep), choice.share);
-        return model;
+        return at_precision(std::move(model), budget.sh_precision);
     };
     const std::vector<ShChoice> choices = sh_choices(cloud.sh_degree);
     // The last per-Gaussian choice drops every higher band: its best Gaussian is the smallest model.

@@ -643,6 +643,20 @@ expect prune-max-mb-compressed-ply 0 "with 100% of the higher bands dropped per 
   "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.5 -o "$work/max.compressed.ply"
 [ -f "$work/max.compressed.ply" ] && [ "$(stat -c %s "$work/max.compressed.ply")" -le 500000 ] &&
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.5 wrote more than 500000 bytes"; }
+# --sh-bits: fewer bits of SPZ's SH byte give a smaller file, and --max-mb measures its candidates so.
+expect prune-sh-bits 0 "wrote $work/half65.spz" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --ratio 0.5 --sh-bits 6,5 -o "$work/half65.spz"
+expect prune-sh-bits-full 0 "wrote $work/half88.spz" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --ratio 0.5 -o "$work/half88.spz"
+[ -f "$work/half65.spz" ] && [ -f "$work/half88.spz" ] &&
+  [ "$(stat -c %s "$work/half65.spz")" -lt "$(stat -c %s "$work/half88.spz")" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: prune --sh-bits 6,5 wrote no smaller SPZ than full precision"; }
+expect prune-max-mb-sh-bits 0 "wrote $work/max65.spz" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --max-mb 0.3 --sh-bits 6,5 -o "$work/max65.spz"
+[ -f "$work/max65.spz" ] && [ "$(stat -c %s "$work/max65.spz")" -le 300000 ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.3 --sh-bits 6,5 wrote more than 300000 bytes"; }
+expect prune-sh-bits-range any-failure "--sh-bits" -- "$vksplat" prune "$work/demo/demo.ply" \
+  --cameras "$work/cameras.json" --method opacity --ratio 0.5 --sh-bits 9,5 -o "$work/bits.spz"
 refused_before_work prune-max-mb-too-small "$work/tiny.spz" \
   "--max-mb 1e-05: no model fits in it: the smallest, one Gaussian at SH degree 0, takes" -- "$vksplat" prune \
   "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.00001 -o "$work/tiny.spz"

@@ -11,6 +11,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 #include "vksplat/prune/sh_reduction.hpp"
 #include "vksplat/prune/size_budget.hpp"
 
@@ -99,10 +100,11 @@ protected:
         renderer = std::make_unique<Renderer>(context());
         views = eval::render_targets(*renderer, cloud, cameras, {});
     }
-    prune::BudgetResult fit(size_t max_bytes, const std::string& format) {
+    prune::BudgetResult fit(size_t max_bytes, const std::string& format, prune::ShPrecision precision = {}) {
         prune::SizeBudget budget;
         budget.max_bytes = max_bytes;
         budget.format = format;
+        budget.sh_precision = precision;
         return prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
     }
     GaussianCloud cloud = random_scene(92, 400, 3);
@@ -142,6 +144,19 @@ TEST_F(SizeBudget, KeepsTheBestModelThatFitsTradingCountAgainstBands) {
     EXPECT_EQ(all.probes.size(), 1u);
     EXPECT_EQ(all.kept, cloud.size());
     EXPECT_EQ(all.drop, 0.0);
+}
+
+// Fewer bits of SPZ's SH byte: the candidates are measured as rounded, so the model chosen is
+// rounded, fits, and keeps more Gaussians at full SH than at full precision.
+TEST_F(SizeBudget, MeasuresItsCandidatesAtTheSHPrecisionAsked) {
+    const size_t budget = prune::scene_file_bytes(cloud, "spz") / 2;
+    const prune::ShPrecision coarse{6, 4};
+    const prune::BudgetResult rounded = fit(budget, "spz", coarse);
+    ASSERT_TRUE(rounded.model);
+    EXPECT_LE(prune::scene_file_bytes(*rounded.model, "spz"), budget);
+    EXPECT_EQ(rounded.model->sh, prune::with_sh_precision(*rounded.model, coarse).sh) << "already on the grid";
+    const prune::BudgetResult full = fit(budget, "spz");
+    EXPECT_GT(rounded.probes.front().kept, full.probes.front().kept) << "at every band, more Gaussians fit";
 }
 
 TEST_F(SizeBudget, SkipsPerGaussianBandsWhereTheFormatStoresNoZerosCompactly) {

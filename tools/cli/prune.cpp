@@ -26,6 +26,7 @@ struct PruneArgs {
     bool allow_sh_reduction = false;
     std::vector<float> background{0, 0, 0};
     std::optional<int> sh_degree;
+    std::vector<int> sh_bits;  // degree 1, then degrees 2 and 3; empty: full precision
     uint64_t seed = 0;
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
     std::optional<double> recover_seconds;
@@ -113,6 +114,7 @@ int run_prune(const PruneArgs& args) {
     options.images_dir = optional_path(args.images);
     options.settings.background = {args.background[0], args.background[1], args.background[2]};
     options.sh_degree = args.sh_degree;
+    if (!args.sh_bits.empty()) options.sh_precision = prune::ShPrecision{args.sh_bits[0], args.sh_bits[1]};
     options.seed = args.seed;
     options.save_scores = optional_path(args.save_scores);
     options.save_totals = optional_path(args.save_totals);
@@ -223,6 +225,12 @@ void register_prune(CLI::App& app, Action& action) {
         ->check(number_in(0.0, 1.0));
     command->add_option("--sh-degree", args->sh_degree, "write the scene with at most this SH degree")
         ->check(count_in(0, 3));
+    command->add_option("--sh-bits", args->sh_bits,
+                        "B1,B2: keep B1 bits of SPZ's SH byte for degree 1 and B2 for degrees 2 and 3 (1..8; "
+                        "SPZ's own encoder: 5,4); a smaller SPZ, and --max-mb measures at it")
+        ->delimiter(',')
+        ->expected(2)
+        ->check(count_in(1, 8));
     command->add_option("--save-scores", args->save_scores, "write the scores as float32 [N] .npy");
     command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")

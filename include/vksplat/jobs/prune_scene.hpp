@@ -48,6 +48,9 @@ struct PruneOptions {
     // Write SH up to this degree (capped at the scene's). A quality budget then measures its drop
     // from the unpruned scene at this degree.
     std::optional<int> sh_degree;
+    // Round the written model's higher SH to this precision (prune/sh_precision.hpp: fewer bits of
+    // SPZ's byte, a smaller SPZ file); a size budget measures its candidates rounded so.
+    std::optional<prune::ShPrecision> sh_precision;
     uint64_t seed = 0;                // for the random method
     // Scores of `method` (float32 [N]) and the view totals (float32 [N, 5]; only where there are
     // any: rendered, or loaded from a totals file); see prune/score_files.hpp.

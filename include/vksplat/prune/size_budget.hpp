@@ -17,6 +17,7 @@
 #include <string>
 
 #include "vksplat/prune/quality_budget.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 
 namespace vksplat::prune {
 
@@ -24,6 +25,9 @@ struct SizeBudget {
     size_t max_bytes = 0;
     std::string format;          // as io::write_scene names it ("spz", "compressed-ply", ...)
     double assumed_psnr = 30.0;  // dB, used only without photos (see quality_budget.hpp)
+    // Every candidate's SH rounded to this precision (sh_precision.hpp) before its bytes and its
+    // quality are measured; the default, full precision, leaves the candidates as they are.
+    ShPrecision sh_precision;
 };
 
 // The bytes `cloud` takes as a file of `format`, written to a temporary file that is then removed.
@@ -47,7 +51,7 @@ double model_sh_share(const BudgetResult& choice, int cloud_degree);
 // degree with every band (the re-fit gives colour to bands the choice had dropped, which the file
 // would pay for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
 // the cheapest by its own re-fitted coefficients and `weights` (its blend weights, one per
-// Gaussian, or empty; sh_reduction.hpp); then, if its file does not fit (re-fitted values compress
+// Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision; then, if its file does not fit (re-fitted values compress
 // less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit. Throws
 // std::invalid_argument when the sizes differ.
 GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double> weights, std::span<const float> scores,
