@@ -36,6 +36,7 @@
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/prune/accumulate.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 #include "vksplat/prune/size_budget.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 
@@ -94,6 +95,10 @@ int main(int argc, char** argv) {
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--sh-degree", sh_degree, "reduce the whole cloud to this SH degree before pruning and re-fitting")
         ->check(CLI::Range(0, 3));
+    std::vector<int> sh_bits;
+    app.add_option("--sh-bits", sh_bits, "B1,B2: also measure the re-fitted model with its SH rounded so (prune --sh-bits)")
+        ->delimiter(',')
+        ->expected(2);
     app.add_option("--keep", keep_path, "uint8 [N] .npy: re-fit only the Gaussians of the scene it marks");
     app.add_flag("--subject", subject_only,
                  "mask the loss and measure inside the subject region (the automatic ball) of the whole scene");
@@ -230,6 +235,13 @@ int main(int argc, char** argv) {
                         result.after->mean_psnr - unpruned);
         }
         print_file_bytes("re-fitted file", result.cloud);
+        if (!sh_bits.empty()) {
+            const prune::ShPrecision precision{sh_bits[0], sh_bits[1]};
+            const GaussianCloud rounded = prune::with_sh_precision(result.cloud, precision);
+            print_file_bytes(("at --sh-bits " + std::to_string(sh_bits[0]) + "," + std::to_string(sh_bits[1])).c_str(),
+                             rounded);
+            std::printf("test PSNR at --sh-bits %d,%d: %.3f dB\n", sh_bits[0], sh_bits[1], quality(rounded).mean_psnr);
+        }
         if (!save.empty()) io::write_scene(result.cloud, save, io::WriteMode::overwrite);
         std::printf("iterations %llu (skipped %llu), wall %.2f s = %.3f ms per iteration, GPU median %.3f ms\n",
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
