@@ -2,6 +2,7 @@
 
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -22,8 +23,16 @@ ConvertResult convert_scene(const fs::path& input, const fs::path& output, const
                                                        : io::scene_format_named(input, options.input_format);
     io::refuse_input_as_output(output, {input});
     result.output_format = io::check_scene_writable(output, options.mode, options.output_format);
+    if (options.sh_precision)
+        prune::check_sh_precision(*options.sh_precision, "--sh-bits " + std::to_string(options.sh_precision->degree1_bits) +
+                                                             "," + std::to_string(options.sh_precision->higher_bits));
 
-    const GaussianCloud cloud = io::read_scene(input, &result.notes, result.input_format);
+    GaussianCloud cloud = io::read_scene(input, &result.notes, result.input_format);
+    if (options.sh_precision) {
+        cloud = prune::with_sh_precision(cloud, *options.sh_precision);
+        result.notes.push_back("SH degrees 1 and 2-3 rounded to " + std::to_string(options.sh_precision->degree1_bits) +
+                               " and " + std::to_string(options.sh_precision->higher_bits) + " bits of SPZ's byte");
+    }
     result.gaussians = cloud.size();
     result.input_sh_degree = cloud.sh_degree;
     result.output_sh_degree = kept_sh_degree(result.output_format, cloud.sh_degree);

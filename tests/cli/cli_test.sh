@@ -96,6 +96,12 @@ expect bench-bad-grid 2 "expected NxM" -- "$vksplat" bench "$work/demo/demo.ply"
 # Convert: the demo scene through every writable format and back, the refusal to overwrite, --force.
 expect convert-to-splat 0 "wrote 38605 Gaussians (SH degree 0)" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.splat"
 expect convert-to-spz 0 "(ply) to $work/demo.spz (spz)" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo.spz"
+expect convert-sh-bits 0 "rounded to 6 and 6 bits" -- "$vksplat" convert "$work/demo/demo.ply" "$work/demo66.spz" \
+  --sh-bits 6,6
+[ "$(stat -c %s "$work/demo66.spz")" -lt "$(stat -c %s "$work/demo.spz")" ] && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: convert --sh-bits 6,6 wrote no smaller SPZ"; }
+expect convert-sh-bits-range 2 "--sh-bits 0,6: SH bits must be whole numbers from 1 to 8" -- "$vksplat" convert \
+  "$work/demo/demo.ply" "$work/demo06.spz" --sh-bits 0,6
 expect convert-named-format 0 "(ply)" -- "$vksplat" convert "$work/demo.spz" "$work/from_spz.bin" --format ply
 expect convert-back 0 "wrote 38605 Gaussians (SH degree 3)" -- "$vksplat" convert "$work/from_spz.bin" \
   "$work/from_spz.ply" --input-format ply

@@ -1,6 +1,7 @@
 // vksplat convert: rewrites a scene file in another format.
 #include <cstdio>
 #include <memory>
+#include <vector>
 
 #include "commands.hpp"
 #include "vksplat/io/formats.hpp"
@@ -11,6 +12,7 @@ namespace {
 
 struct ConvertArgs {
     std::string input, output, input_format, output_format;
+    std::vector<int> sh_bits;  // degree 1, then degrees 2 and 3; empty: full precision
     bool force = false;
 };
 
@@ -19,6 +21,7 @@ int run_convert(const ConvertArgs& args) {
     options.input_format = args.input_format;
     options.output_format = args.output_format;
     options.mode = args.force ? io::WriteMode::overwrite : io::WriteMode::refuse_existing;
+    if (!args.sh_bits.empty()) options.sh_precision = prune::ShPrecision{args.sh_bits[0], args.sh_bits[1]};
     const auto result = jobs::convert_scene(args.input, args.output, options);
     for (const auto& note : result.notes) std::fprintf(stderr, "note: %s\n", note.c_str());
     std::printf("wrote %zu Gaussians (SH degree %d) from %s (%s) to %s (%s)\n", result.gaussians,
@@ -48,6 +51,11 @@ void register_convert(CLI::App& app, Action& action) {
     command->add_option("output", args->output, "scene file to write")->required();
     command->add_option("-f,--format", args->output_format, "output format (" + formats + ")");
     command->add_option("--input-format", args->input_format, "input format, if its extension does not say");
+    command->add_option("--sh-bits", args->sh_bits,
+                        "B1,B2: round the higher SH to B1 bits of SPZ's byte for degree 1 and B2 for degrees 2 "
+                        "and 3 (1..8; Niantic's encoder: 5,4), for a smaller SPZ (see prune --sh-bits)")
+        ->delimiter(',')
+        ->expected(2);
     command->add_flag("--force", args->force, "overwrite the output file if it exists");
     command->callback([&action, args] { action = [args] { return run_convert(*args); }; });
 }

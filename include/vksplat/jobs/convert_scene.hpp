@@ -6,7 +6,10 @@
 #include <string>
 #include <vector>
 
+#include <optional>
+
 #include "vksplat/io/write_mode.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 
 namespace vksplat::jobs {
 
@@ -14,6 +17,8 @@ struct ConvertOptions {
     std::string input_format;   // empty: by the input's extension (and header, for .ply)
     std::string output_format;  // empty: by the output's extension, never by what a file there holds
     io::WriteMode mode = io::WriteMode::refuse_existing;
+    // The higher SH rounded to this precision before writing (prune/sh_precision.hpp: a smaller SPZ).
+    std::optional<prune::ShPrecision> sh_precision = std::nullopt;
 };
 
 struct ConvertResult {
