@@ -160,9 +160,11 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
     // and sample), and one scoring pass costs less than a round's re-fit.
     const prune::ViewTotals totals = prune::accumulate(renderer, recovered.cloud, cameras, result.train_views,
                                                        options.settings, {}, prune::needs_fisher(options.method));
+    prune::SizeBudget chosen = size;
+    chosen.sh_precision = choice.sh_precision;
     return prune::fit_refitted(recovered.cloud, totals.blend,
                                prune::score(recovered.cloud, totals, options.method, options.seed),
-                               prune::model_sh_share(choice, cloud.sh_degree), size);
+                               prune::model_sh_share(choice, cloud.sh_degree), chosen);
 }
 
 // Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted (one round)

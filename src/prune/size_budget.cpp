@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -20,25 +21,33 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// The cloud at `degree`, with `share` of its higher bands then dropped per Gaussian.
+// The cloud at `degree`, with `share` of its higher bands then dropped per Gaussian, its SH values
+// at `precision`.
 struct ShChoice {
     int degree = 0;
     double share = 0;
+    ShPrecision precision;
 };
 
-// The choices size_budget.hpp lists, the unreduced one first.
 // `model` rounded to `precision`, or as it is at full precision (what an 8-bit SPZ writer rounds
 // anyway, and the other formats on their own grids).
 GaussianCloud at_precision(GaussianCloud model, const ShPrecision& precision) {
     return precision == ShPrecision{} ? model : with_sh_precision(model, precision);
 }
 
-std::vector<ShChoice> sh_choices(int degree) {
+// The choices size_budget.hpp lists at one precision, the unreduced one first.
+std::vector<ShChoice> sh_choices(int degree, const ShPrecision& precision) {
     std::vector<ShChoice> choices;
     const int steps = 2 * degree;
-    for (int s = 0; s <= steps; ++s) choices.push_back({degree, steps ? double(s) / double(steps) : 0.0});
-    for (int d = degree - 1; d >= 1; --d) choices.push_back({d, 0.0});
+    for (int s = 0; s <= steps; ++s) choices.push_back({degree, steps ? double(s) / double(steps) : 0.0, precision});
+    for (int d = degree - 1; d >= 1; --d) choices.push_back({d, 0.0, precision});
     return choices;
+}
+
+// The precisions a budget tries: the one it sets, else kSizeBudgetPrecisions.
+std::vector<ShPrecision> precisions_of(const SizeBudget& budget) {
+    if (budget.sh_precision) return {*budget.sh_precision};
+    return {std::begin(kSizeBudgetPrecisions), std::end(kSizeBudgetPrecisions)};
 }
 
 std::vector<double> kept_values(std::span<const double> values, const KeepMask& keep) {
@@ -108,7 +117,7 @@ GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double
     if (scores.size() != refitted.size())
         throw std::invalid_argument("prune::fit_refitted: the scores are not of the re-fitted model");
     const GaussianCloud reduced =
-        at_precision(with_sh_share_dropped(refitted, weights, sh_share), budget.sh_precision);
+        at_precision(with_sh_share_dropped(refitted, weights, sh_share), budget.sh_precision.value_or(ShPrecision{}));
     const Ranking ranking(scores, keep_all(reduced.size()));
     const size_t kept = largest_fitting(reduced.size(), budget.max_bytes, [&](size_t count) {
         return scene_file_bytes(reduced.subset(ranking.keep_best(count)), budget.format);
@@ -129,11 +138,11 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
         GaussianCloud model = cloud.subset(keep);
         if (choice.degree != model.sh_degree) model = model.with_sh_degree(choice.degree);
         if (choice.share > 0) model = with_sh_share_dropped(model, kept_values(weights, keep), choice.share);
-        return at_precision(std::move(model), budget.sh_precision);
+        return at_precision(std::move(model), choice.precision);
     };
-    const std::vector<ShChoice> choices = sh_choices(cloud.sh_degree);
     // The last per-Gaussian choice drops every higher band: its best Gaussian is the smallest model.
-    check_size_reachable(model_of(std::min<size_t>(most, 1), choices[size_t(2 * cloud.sh_degree)]), budget);
+    check_size_reachable(model_of(std::min<size_t>(most, 1), sh_choices(cloud.sh_degree, {})[size_t(2 * cloud.sh_degree)]),
+                         budget);
 
     BudgetResult result;
     result.met = true;
@@ -146,6 +155,7 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
         p.kept = kept;
         p.sh_degree = model.sh_degree;
         p.sh_share = choice.share;
+        p.sh_precision = choice.precision;
         p.bytes = bytes;
         p.psnr = quality.mean_psnr;
         p.drop = psnr_drop(quality, views, result.baseline_psnr, budget.assumed_psnr);
@@ -158,31 +168,43 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
             result.kept = p.kept;
             result.sh_degree = p.sh_degree;
             result.sh_share = p.sh_share;
+            result.sh_precision = p.sh_precision;
             result.psnr = p.psnr;
             result.drop = p.drop;
         }
     };
 
-    size_t unreduced_bytes = 0;
-    for (const ShChoice& choice : choices) {
-        std::map<size_t, size_t> sizes;  // by count: each file is written once
-        const auto bytes_of = [&](size_t kept) {
-            auto [entry, fresh] = sizes.try_emplace(kept, 0);
-            if (fresh) entry->second = scene_file_bytes(model_of(kept, choice), budget.format);
-            return entry->second;
-        };
-        const bool per_gaussian = choice.degree == cloud.sh_degree && choice.share > 0 && choice.share < 1;
-        if (choice.degree == cloud.sh_degree && choice.share == 0) {
-            unreduced_bytes = bytes_of(most);
-            if (unreduced_bytes <= budget.max_bytes) {  // everything fits: nothing to trade
-                probe(most, choice, unreduced_bytes);
-                break;
+    size_t full_precision_bytes = 0;  // the unreduced model's file at full precision
+    bool all_fit = false;
+    for (const ShPrecision& precision : precisions_of(budget)) {
+        size_t unreduced_bytes = 0;
+        for (const ShChoice& choice : sh_choices(cloud.sh_degree, precision)) {
+            std::map<size_t, size_t> sizes;  // by count: each file is written once
+            const auto bytes_of = [&](size_t kept) {
+                auto [entry, fresh] = sizes.try_emplace(kept, 0);
+                if (fresh) entry->second = scene_file_bytes(model_of(kept, choice), budget.format);
+                return entry->second;
+            };
+            const bool per_gaussian = choice.degree == cloud.sh_degree && choice.share > 0 && choice.share < 1;
+            if (choice.degree == cloud.sh_degree && choice.share == 0) {
+                unreduced_bytes = bytes_of(most);
+                if (precision == ShPrecision{}) {
+                    full_precision_bytes = unreduced_bytes;
+                } else if (full_precision_bytes > 0 && unreduced_bytes >= full_precision_bytes) {
+                    break;  // the format does not store the rounded values in fewer bytes
+                }
+                if (unreduced_bytes <= budget.max_bytes) {  // everything fits: nothing to trade
+                    probe(most, choice, unreduced_bytes);
+                    all_fit = true;
+                    break;
+                }
+            } else if (per_gaussian && bytes_of(most) >= unreduced_bytes) {
+                continue;  // the format does not store these zeros in fewer bytes
             }
-        } else if (per_gaussian && bytes_of(most) >= unreduced_bytes) {
-            continue;  // the format does not store these zeros in fewer bytes
+            const size_t kept = largest_fitting(most, budget.max_bytes, bytes_of);
+            if (kept > 0) probe(kept, choice, bytes_of(kept));
         }
-        const size_t kept = largest_fitting(most, budget.max_bytes, bytes_of);
-        if (kept > 0) probe(kept, choice, bytes_of(kept));
+        if (all_fit) break;
     }
     result.keep = ranking.keep_best(result.kept);
     return result;

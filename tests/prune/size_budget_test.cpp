@@ -3,6 +3,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <optional>
+#include <set>
 #include <stdexcept>
 
 #include "support/gpu_fixture.hpp"
@@ -100,7 +102,9 @@ protected:
         renderer = std::make_unique<Renderer>(context());
         views = eval::render_targets(*renderer, cloud, cameras, {});
     }
-    prune::BudgetResult fit(size_t max_bytes, const std::string& format, prune::ShPrecision precision = {}) {
+    // At full SH precision unless asked otherwise (nullopt: the budget tries kSizeBudgetPrecisions).
+    prune::BudgetResult fit(size_t max_bytes, const std::string& format,
+                            std::optional<prune::ShPrecision> precision = prune::ShPrecision{}) {
         prune::SizeBudget budget;
         budget.max_bytes = max_bytes;
         budget.format = format;
@@ -157,6 +161,26 @@ TEST_F(SizeBudget, MeasuresItsCandidatesAtTheSHPrecisionAsked) {
     EXPECT_EQ(rounded.model->sh, prune::with_sh_precision(*rounded.model, coarse).sh) << "already on the grid";
     const prune::BudgetResult full = fit(budget, "spz");
     EXPECT_GT(rounded.probes.front().kept, full.probes.front().kept) << "at every band, more Gaussians fit";
+}
+
+// Unset, the precision is one more thing traded by measurement: every precision's choices are
+// probed (where the format gains from it) and the least drop of all is kept.
+TEST_F(SizeBudget, TriesEachPrecisionWhereTheFormatGainsAndKeepsTheLeastDrop) {
+    const size_t budget = prune::scene_file_bytes(cloud, "spz") / 3;
+    const prune::BudgetResult searched = fit(budget, "spz", std::nullopt);
+    ASSERT_TRUE(searched.model);
+    EXPECT_LE(prune::scene_file_bytes(*searched.model, "spz"), budget);
+    std::set<std::pair<int, int>> tried;
+    for (const auto& probe : searched.probes) {
+        tried.insert({probe.sh_precision.degree1_bits, probe.sh_precision.higher_bits});
+        EXPECT_GE(probe.drop, searched.drop);
+    }
+    EXPECT_EQ(tried.size(), std::size(prune::kSizeBudgetPrecisions));
+    EXPECT_EQ(searched.model->sh, prune::with_sh_precision(*searched.model, searched.sh_precision).sh);
+    // compressed PLY stores each SH value in a byte of its own grid: rounding them gains nothing.
+    const prune::BudgetResult fixed_bytes = fit(prune::scene_file_bytes(cloud, "compressed-ply") / 2, "compressed-ply",
+                                                std::nullopt);
+    for (const auto& probe : fixed_bytes.probes) EXPECT_EQ(probe.sh_precision, prune::ShPrecision{});
 }
 
 TEST_F(SizeBudget, SkipsPerGaussianBandsWhereTheFormatStoresNoZerosCompactly) {

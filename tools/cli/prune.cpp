@@ -61,6 +61,8 @@ jobs::PruneSelector selector(const PruneArgs& args) {
 void print_probe(const prune::BudgetProbe& probe) {
     std::printf("probe: keep %zu, SH %d", probe.kept, probe.sh_degree);
     if (probe.sh_share > 0) std::printf(" with %.0f%% of the higher bands dropped per Gaussian", 100.0 * probe.sh_share);
+    if (probe.sh_precision != prune::ShPrecision{})
+        std::printf(", SH bits %d,%d", probe.sh_precision.degree1_bits, probe.sh_precision.higher_bits);
     if (probe.bytes > 0) std::printf(", %.3f MB", double(probe.bytes) / 1e6);
     std::printf(": PSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.psnr, probe.drop, probe.seconds,
                 probe.meets ? "within budget" : "over budget");
@@ -76,6 +78,8 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
                 result.sh_degree_before, result.sh_degree_after);
     if (result.budget && result.budget->sh_share > 0 && result.budget->sh_share < 1)
         std::printf(" (%.0f%% of the higher bands dropped per Gaussian)", 100.0 * result.budget->sh_share);
+    if (result.budget && result.budget->sh_precision != prune::ShPrecision{})
+        std::printf(", SH bits %d,%d", result.budget->sh_precision.degree1_bits, result.budget->sh_precision.higher_bits);
     std::printf("\n");
     if (result.budget && !result.budget->met)
         std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",

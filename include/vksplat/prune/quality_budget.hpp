@@ -18,6 +18,7 @@
 
 #include "vksplat/eval/quality.hpp"
 #include "vksplat/prune/selection.hpp"
+#include "vksplat/prune/sh_precision.hpp"
 
 namespace vksplat::prune {
 
@@ -36,6 +37,7 @@ struct BudgetProbe {
     size_t kept = 0;
     int sh_degree = 0;
     double sh_share = 0;  // of the higher bands, dropped per Gaussian (prune/sh_reduction.hpp)
+    ShPrecision sh_precision;  // of the higher bands' values (prune/sh_precision.hpp)
     size_t bytes = 0;     // the model's file, where a size budget measured it; else 0
     double psnr = 0;      // mean over the test views against the targets
     double drop = 0;      // dB, as defined above
@@ -48,6 +50,7 @@ struct BudgetResult {
     size_t kept = 0;
     int sh_degree = 0;
     double sh_share = 0;       // of the higher bands, dropped per Gaussian (a size budget's choice)
+    ShPrecision sh_precision;  // of the higher bands' values (a size budget's choice)
     double baseline_psnr = 0;  // `cloud`'s mean PSNR against the photos; 0 without photos
     double psnr = 0, drop = 0; // of the model chosen
     // False when even every candidate (all the lossless pass left) misses the budget; the result

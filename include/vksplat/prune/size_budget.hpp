@@ -4,7 +4,8 @@
 //
 // The SH choices tried: every Gaussian at the cloud's degree D with a share s of its higher bands
 // dropped per Gaussian (s = 0, 1/2D, 2/2D, ..., 1; prune/sh_reduction.hpp, among the Gaussians
-// kept), and the whole cloud at each degree between 1 and D - 1. Dropping bands per Gaussian only
+// kept), and the whole cloud at each degree between 1 and D - 1; each at every SH precision of the
+// budget (below). Dropping bands per Gaussian only
 // shrinks a file whose format compresses zeros (SPZ); a choice whose file of every candidate is no
 // smaller than that of the unreduced one is skipped unmeasured, as it can only keep fewer
 // Gaussians and less colour. For every other choice, a bisection on the count kept (best first,
@@ -13,6 +14,7 @@
 // quality_budget.hpp defines it) is kept. When every candidate at full SH fits, that is the model.
 #include <cstddef>
 #include <functional>
+#include <optional>
 #include <span>
 #include <string>
 
@@ -25,10 +27,16 @@ struct SizeBudget {
     size_t max_bytes = 0;
     std::string format;          // as io::write_scene names it ("spz", "compressed-ply", ...)
     double assumed_psnr = 30.0;  // dB, used only without photos (see quality_budget.hpp)
-    // Every candidate's SH rounded to this precision (sh_precision.hpp) before its bytes and its
-    // quality are measured; the default, full precision, leaves the candidates as they are.
-    ShPrecision sh_precision;
+    // The candidates' SH rounded to this precision (sh_precision.hpp) before their bytes and
+    // quality are measured; unset: each of kSizeBudgetPrecisions is tried, as another choice.
+    std::optional<ShPrecision> sh_precision;
 };
+
+// The SH precisions a size budget tries when none is set: full, 6 bits (bonsai's SPZ 0.74x for
+// -0.09 dB) and SPZ's encoder's 5 and 4 (0.55x for -1.24 dB). A precision whose file at full SH
+// and count is no smaller than at full precision (formats that do not entropy-code the SH bytes)
+// is skipped unmeasured.
+inline constexpr ShPrecision kSizeBudgetPrecisions[] = {{8, 8}, {6, 6}, {5, 4}};
 
 // The bytes `cloud` takes as a file of `format`, written to a temporary file that is then removed.
 size_t scene_file_bytes(const GaussianCloud& cloud, const std::string& format);
@@ -51,7 +59,7 @@ double model_sh_share(const BudgetResult& choice, int cloud_degree);
 // degree with every band (the re-fit gives colour to bands the choice had dropped, which the file
 // would pay for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
 // the cheapest by its own re-fitted coefficients and `weights` (its blend weights, one per
-// Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision; then, if its file does not fit (re-fitted values compress
+// Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision (full where unset); then, if its file does not fit (re-fitted values compress
 // less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit. Throws
 // std::invalid_argument when the sizes differ.
 GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double> weights, std::span<const float> scores,
