@@ -23,9 +23,7 @@ ConvertResult convert_scene(const fs::path& input, const fs::path& output, const
                                                        : io::scene_format_named(input, options.input_format);
     io::refuse_input_as_output(output, {input});
     result.output_format = io::check_scene_writable(output, options.mode, options.output_format);
-    if (options.sh_precision)
-        prune::check_sh_precision(*options.sh_precision, "--sh-bits " + std::to_string(options.sh_precision->degree1_bits) +
-                                                             "," + std::to_string(options.sh_precision->higher_bits));
+    if (options.sh_precision) prune::check_sh_precision(*options.sh_precision);
 
     GaussianCloud cloud = io::read_scene(input, &result.notes, result.input_format);
     if (options.sh_precision) {

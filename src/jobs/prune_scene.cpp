@@ -34,9 +34,7 @@ void check_options(const PruneOptions& options) {
     }
     if (options.sh_degree && (*options.sh_degree < 0 || *options.sh_degree > 3))
         throw InputError("--sh-degree " + std::to_string(*options.sh_degree), "must lie in 0..3");
-    if (options.sh_precision)
-        prune::check_sh_precision(*options.sh_precision, "--sh-bits " + std::to_string(options.sh_precision->degree1_bits) +
-                                                             "," + std::to_string(options.sh_precision->higher_bits));
+    if (options.sh_precision) prune::check_sh_precision(*options.sh_precision);
     if (const auto* ratio = std::get_if<DropRatio>(&options.selector); ratio && !(ratio->ratio >= 0 && ratio->ratio <= 1))
         throw InputError("--ratio " + std::to_string(ratio->ratio), "must lie in [0, 1] (the fraction to drop)");
     if (const auto* threshold = std::get_if<DropAtOrBelow>(&options.selector); threshold && std::isnan(threshold->threshold))

@@ -21,15 +21,16 @@ float rounded(float coefficient, int bits) {
 
 }  // namespace
 
-void check_sh_precision(const ShPrecision& precision, const std::string& what) {
+void check_sh_precision(const ShPrecision& precision) {
     for (int bits : {precision.degree1_bits, precision.higher_bits})
         if (bits < 1 || bits > 8)
-            throw InputError(what, "SH bits must be whole numbers from 1 to 8 (degree 1, then degrees 2 and 3)");
+            throw InputError("--sh-bits " + std::to_string(precision.degree1_bits) + "," +
+                                 std::to_string(precision.higher_bits),
+                             "SH bits must be whole numbers from 1 to 8 (degree 1, then degrees 2 and 3)");
 }
 
 GaussianCloud with_sh_precision(const GaussianCloud& cloud, const ShPrecision& precision) {
-    check_sh_precision(precision, "SH precision " + std::to_string(precision.degree1_bits) + "," +
-                                      std::to_string(precision.higher_bits));
+    check_sh_precision(precision);
     GaussianCloud out = cloud;
     const size_t coefficients = size_t(cloud.sh_coefficients());
     for (size_t i = 0; i < cloud.size(); ++i)

@@ -53,7 +53,7 @@ TEST(ShPrecision, BitsOutsideOneToEightAreRefused) {
     EXPECT_THROW(prune::with_sh_precision(cloud, {0, 6}), InputError);
     EXPECT_THROW(prune::with_sh_precision(cloud, {8, 9}), InputError);
     try {
-        prune::check_sh_precision({7, 12}, "--sh-bits 7,12");
+        prune::check_sh_precision({7, 12});
         FAIL() << "12 bits were accepted";
     } catch (const InputError& e) {
         EXPECT_NE(std::string(e.what()).find("--sh-bits 7,12"), std::string::npos) << e.what();

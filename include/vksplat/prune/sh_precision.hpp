@@ -8,10 +8,8 @@
 // exactly. Other formats hold the rounded values too but quantise them on their own grids.
 //
 // Measured (bonsai, 399,803 Gaussians at degree 3, its 37 test views against the photos; its SPZ
-// at full 8 bits: 17.9 MB, 30.717 dB): degree-1 / higher bits 8/6: 14.8 MB, -0.074 dB; 7/6:
-// 14.1 MB, -0.079; 7/5: 12.5 MB, -0.327; 6/5: 11.8 MB, -0.339; the encoder's 5/4: 9.8 MB, -1.242.
-#include <string>
-
+// at full 8 bits: 17.9 MB, 30.717 dB): degree-1 / higher bits 8/6: 14.8 MB, -0.074 dB; 6/6:
+// 13.2 MB, -0.093; 7/5: 12.5 MB, -0.327; 6/5: 11.8 MB, -0.339; the encoder's 5/4: 9.8 MB, -1.242.
 #include "vksplat/scene/scene.hpp"
 
 namespace vksplat::prune {
@@ -22,9 +20,9 @@ struct ShPrecision {
     bool operator==(const ShPrecision&) const = default;
 };
 
-// Throws InputError (naming `what`, such as "--sh-bits 9,6") unless both are whole numbers of
-// bits from 1 to 8.
-void check_sh_precision(const ShPrecision& precision, const std::string& what);
+// Throws InputError (naming it as "--sh-bits B1,B2", the commands' option) unless both are whole
+// numbers of bits from 1 to 8.
+void check_sh_precision(const ShPrecision& precision);
 
 // `cloud` with its higher SH coefficients rounded to `precision` (check_sh_precision's range; 8
 // and 8 give what an SPZ file holds anyway: SPZ's byte, clamped to [-1, 127/128]). The DC term is

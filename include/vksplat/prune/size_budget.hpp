@@ -5,10 +5,9 @@
 // The SH choices tried: every Gaussian at the cloud's degree D with a share s of its higher bands
 // dropped per Gaussian (s = 0, 1/2D, 2/2D, ..., 1; prune/sh_reduction.hpp, among the Gaussians
 // kept), and the whole cloud at each degree between 1 and D - 1; each at every SH precision of the
-// budget (below). Dropping bands per Gaussian only
-// shrinks a file whose format compresses zeros (SPZ); a choice whose file of every candidate is no
-// smaller than that of the unreduced one is skipped unmeasured, as it can only keep fewer
-// Gaussians and less colour. For every other choice, a bisection on the count kept (best first,
+// budget (below). Dropping bands per Gaussian only shrinks a file whose format compresses zeros
+// (SPZ); a choice whose file of every candidate is no smaller than that of the unreduced one is
+// skipped unmeasured, as it can only keep fewer Gaussians and less colour. For every other choice, a bisection on the count kept (best first,
 // as a Ranking orders them) finds the most Gaussians whose file fits, each probe writing the file;
 // each choice's model is then rendered on the test views, and the one of least PSNR drop (as
 // quality_budget.hpp defines it) is kept. When every candidate at full SH fits, that is the model.
@@ -59,9 +58,10 @@ double model_sh_share(const BudgetResult& choice, int cloud_degree);
 // degree with every band (the re-fit gives colour to bands the choice had dropped, which the file
 // would pay for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
 // the cheapest by its own re-fitted coefficients and `weights` (its blend weights, one per
-// Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision (full where unset); then, if its file does not fit (re-fitted values compress
-// less well), only as many of its best Gaussians by `scores` (one per Gaussian) as fit. Throws
-// std::invalid_argument when the sizes differ.
+// Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision (full where unset); then,
+// if its file does not fit (re-fitted values compress less well), only as many of its best
+// Gaussians by `scores` (one per Gaussian) as fit. Throws std::invalid_argument when the sizes
+// differ.
 GaussianCloud fit_refitted(const GaussianCloud& refitted, std::span<const double> weights, std::span<const float> scores,
                            double sh_share, const SizeBudget& budget);
 
