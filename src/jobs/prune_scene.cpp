@@ -73,7 +73,8 @@ Scored score_from_file(const GaussianCloud& cloud, const PruneOptions& options) 
                                                             " Gaussians' scores, the scene has " +
                                                             std::to_string(cloud.size()) + " (after sanitising)");
     if (file.scores) return {std::move(*file.scores), prune::keep_all(cloud.size()), std::nullopt};
-    return {prune::score(cloud, *file.totals, options.method, options.seed), prune::lossless_mask(*file.totals),
+    return {prune::score(cloud, *file.totals, score_method_of(options), options.seed),
+            prune::lossless_mask(*file.totals),
             std::move(file.totals)};
 }
 
@@ -81,8 +82,9 @@ Scored score_from_views(Renderer& renderer, const GaussianCloud& cloud, const st
                         const PruneOptions& options, const std::vector<size_t>& train, const prune::Progress& progress) {
     // Rendered even for opacity and random: the lossless pass needs the pixel counts.
     prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, options.settings, progress,
-                                                 prune::needs_fisher(options.method));
-    return {prune::score(cloud, totals, options.method, options.seed), prune::lossless_mask(totals), std::move(totals)};
+                                                 prune::needs_fisher(score_method_of(options)));
+    return {prune::score(cloud, totals, score_method_of(options), options.seed), prune::lossless_mask(totals),
+            std::move(totals)};
 }
 
 void save_scored(const Scored& scored, const PruneOptions& options) {
@@ -124,7 +126,7 @@ prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCl
 // options.recover with the job's method, views and background.
 RecoverOptions recover_options(const PruneOptions& options, const PruneResult& result) {
     RecoverOptions recover = *options.recover;
-    recover.method = options.method;
+    recover.method = score_method_of(options);
     recover.finetune.test_views = result.test_views;
     recover.finetune.train_views = result.train_views;
     recover.finetune.train.background = options.settings.background;
@@ -156,12 +158,13 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
     // Which bands cost least and which Gaussians go first if the file outgrows the budget, by the
     // re-fitted model's own blend weights: its Gaussians are not the choice's (the rounds re-rank
     // and sample), and one scoring pass costs less than a round's re-fit.
-    const prune::ViewTotals totals = prune::accumulate(renderer, recovered.cloud, cameras, result.train_views,
-                                                       options.settings, {}, prune::needs_fisher(options.method));
+    const prune::ViewTotals totals =
+        prune::accumulate(renderer, recovered.cloud, cameras, result.train_views, options.settings, {},
+                          prune::needs_fisher(score_method_of(options)));
     prune::SizeBudget chosen = size;
     chosen.sh_precision = choice.sh_precision;
     return prune::fit_refitted(recovered.cloud, totals.blend,
-                               prune::score(recovered.cloud, totals, options.method, options.seed),
+                               prune::score(recovered.cloud, totals, score_method_of(options), options.seed),
                                prune::model_sh_share(choice, cloud.sh_degree), chosen);
 }
 
@@ -202,6 +205,11 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
 }
 
 }  // namespace
+
+prune::ScoreMethod score_method_of(const PruneOptions& options) {
+    if (options.method) return *options.method;
+    return options.recover ? prune::ScoreMethod::blend_mix : prune::ScoreMethod::blend;
+}
 
 PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const std::vector<Camera>& cameras,
                         const PruneOptions& options, const PruneProgress& progress) {

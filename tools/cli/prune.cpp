@@ -98,12 +98,6 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
     std::printf("wrote %s\n", out.c_str());
 }
 
-// The ranking measured best for the job (README, "Choosing a score"): blend weight for a model
-// used as pruned; with a re-fit, blend-mix, which keeps more of what matters in few pixels.
-std::string default_method(const PruneArgs& args) {
-    return !args.recover.empty() || args.recover_seconds ? "blend-mix" : "blend";
-}
-
 int run_prune(const PruneArgs& args) {
     std::vector<std::string> warnings;
     const GaussianCloud cloud = read_scene_file(args.scene);
@@ -111,7 +105,7 @@ int run_prune(const PruneArgs& args) {
     for (const auto& w : warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
 
     jobs::PruneOptions options;
-    options.method = prune::parse_score_method(args.method.empty() ? default_method(args) : args.method);
+    if (!args.method.empty()) options.method = prune::parse_score_method(args.method);
     options.selector = selector(args);
     if (!args.test_views.empty()) options.test_views = jobs::parse_view_list(args.test_views, cameras.size());
     if (!args.train_views.empty()) options.train_views = jobs::parse_view_list(args.train_views, cameras.size());
@@ -143,8 +137,8 @@ int run_prune(const PruneArgs& args) {
     if (options.recover)
         options.recover->finetune.train.deterministic = args.sums.fixed_point(context);
     Renderer renderer(context);
-    std::fprintf(stderr, "pruning %zu Gaussians by %s on %s\n", cloud.size(), std::string(prune::to_string(options.method)).c_str(),
-                 context.info().name.c_str());
+    std::fprintf(stderr, "pruning %zu Gaussians by %s on %s\n", cloud.size(),
+                 std::string(prune::to_string(jobs::score_method_of(options))).c_str(), context.info().name.c_str());
     ProgressLine scoring("scored views");
     jobs::PruneProgress progress;
     ChunkReport chunks;

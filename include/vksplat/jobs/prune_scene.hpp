@@ -37,9 +37,8 @@ struct KeepCount {
 using PruneSelector = std::variant<DropAtOrBelow, DropRatio, KeepCount, prune::QualityBudget, prune::SizeBudget>;
 
 struct PruneOptions {
-    // The ranking, of every re-fit round too. Blend weight is the best measured for a model used as
-    // pruned; with `recover`, set blend_mix (RecoverOptions::method says why), as the CLI does.
-    prune::ScoreMethod method = prune::ScoreMethod::blend;
+    // The ranking, of every re-fit round too; unset: the best measured for the job (score_method_of).
+    std::optional<prune::ScoreMethod> method;
     PruneSelector selector = prune::QualityBudget{};
     std::vector<size_t> test_views;   // empty: default_test_views
     std::vector<size_t> train_views;  // empty: default_train_views
@@ -103,6 +102,10 @@ struct PruneProgress {
     std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
     std::function<void(int round, const train::LoopStatus&)> refit;  // re-fit progress (recover)
 };
+
+// options.method, else the ranking measured best for the job: blend weight for a model used as
+// pruned, blend-mix with `recover` (RecoverOptions::method says why).
+prune::ScoreMethod score_method_of(const PruneOptions& options);
 
 // Prunes `cloud`, seen from `cameras`, and writes the result to options.out. Refuses, before any
 // work, outputs that exist (unless options.mode says overwrite) and options it cannot honour.

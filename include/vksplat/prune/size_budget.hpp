@@ -7,10 +7,11 @@
 // kept), and the whole cloud at each degree between 1 and D - 1; each at every SH precision of the
 // budget (below). Dropping bands per Gaussian only shrinks a file whose format compresses zeros
 // (SPZ); a choice whose file of every candidate is no smaller than that of the unreduced one is
-// skipped unmeasured, as it can only keep fewer Gaussians and less colour. For every other choice, a bisection on the count kept (best first,
-// as a Ranking orders them) finds the most Gaussians whose file fits, each probe writing the file;
-// each choice's model is then rendered on the test views, and the one of least PSNR drop (as
-// quality_budget.hpp defines it) is kept. When every candidate at full SH fits, that is the model.
+// skipped unmeasured, as it can only keep fewer Gaussians and less colour. For every other choice,
+// a bisection on the count kept (best first, as a Ranking orders them) finds the most Gaussians
+// whose file fits, each probe writing the file; each choice's model is then rendered on the test
+// views, and the one of least PSNR drop (as quality_budget.hpp defines it) is kept. When every
+// candidate at full SH fits, that is the model.
 #include <cstddef>
 #include <functional>
 #include <optional>
