@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
     std::optional<int> sh_degree;
     std::vector<std::string> rate_factors;
     const jobs::RecoverOptions recover_defaults;
-    int rounds = recover_defaults.rounds;
+    std::optional<int> rounds;  // unset: jobs::recover_rounds's
     std::string position_lr = "final";
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
@@ -209,13 +209,14 @@ int main(int argc, char** argv) {
             recover.finetune = options;
             const double pruned =
                 quality(cloud.subset(jobs::recover_ranking(scores, candidates, recover, 1).keep_best(keep))).mean_psnr;
+            const uint64_t planned =
+                iterations.value_or(jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())));
+            const int round_count = jobs::recover_rounds(recover, planned);
             if (seconds)
-                std::printf("a budget of %g s over %d rounds\n", *seconds, rounds);
+                std::printf("a budget of %g s over %d rounds\n", *seconds, round_count);
             else
-                std::printf("%llu iterations over %d rounds%s\n",
-                            static_cast<unsigned long long>(iterations.value_or(
-                                jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())))),
-                            rounds, iterations ? "" : " (by the fraction dropped)");
+                std::printf("%llu iterations over %d rounds%s\n", static_cast<unsigned long long>(planned), round_count,
+                            iterations ? "" : " (by the fraction dropped)");
             const auto recovered = jobs::prune_and_recover(context, renderer, cloud, scores, candidates, keep, cameras,
                                                            photos, recover, quality, [&](int, const train::LoopStatus& s) {
                                                                report(s);

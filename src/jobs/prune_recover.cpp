@@ -1,6 +1,7 @@
 // Prune, re-fit, and (in rounds) prune the re-fitted model again.
 #include "vksplat/jobs/prune_recover.hpp"
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -22,8 +23,9 @@ namespace {
 
 // Throws InputError for options no round can run with.
 void check_rounds(const RecoverOptions& options) {
-    if (options.rounds < 1) throw InputError("--rounds " + std::to_string(options.rounds), "must be 1 or more");
-    if (options.rounds > 1 && options.finetune.resume)
+    if (options.rounds && *options.rounds < 1)
+        throw InputError("--rounds " + std::to_string(*options.rounds), "must be 1 or more");
+    if (options.rounds.value_or(1) > 1 && options.finetune.resume)
         throw InputError("--resume", "continues one re-fit; it cannot resume a run of several rounds");
     if (options.seconds) {
         char text[32];
@@ -35,14 +37,23 @@ void check_rounds(const RecoverOptions& options) {
             throw InputError(what, "is a budget instead of an iteration count: give --recover " +
                                        std::to_string(*options.iterations) + " or the seconds, not both");
     }
-    if (options.iterations && *options.iterations < uint64_t(options.rounds))
+    if (options.iterations && options.rounds && *options.iterations < uint64_t(*options.rounds))
         throw InputError("--recover " + std::to_string(*options.iterations),
-                         "leaves no iterations for each of " + std::to_string(options.rounds) + " rounds");
+                         "leaves no iterations for each of " + std::to_string(*options.rounds) + " rounds");
 }
 
 double dropped_share(size_t n, size_t kept) { return n == 0 ? 0.0 : 1.0 - double(kept) / double(n); }
 
 }  // namespace
+
+int recover_rounds(const RecoverOptions& options, uint64_t iterations) {
+    if (options.rounds) return *options.rounds;
+    // A resumed re-fit continues one round (check_rounds refuses several).
+    if (options.finetune.resume) return 1;
+    if (options.seconds) return kDefaultRecoverRounds;
+    const uint64_t unit = options.round_spacing > 0 ? options.round_spacing : RecoverOptions().round_spacing;
+    return int(std::clamp<uint64_t>(iterations / unit, 1, kDefaultRecoverRounds));
+}
 
 uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t spacing) {
     const auto n = uint64_t(rounds), r = uint64_t(round);
@@ -104,23 +115,24 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
 
     const auto start = std::chrono::steady_clock::now();
     const uint64_t iterations = options.iterations.value_or(default_recover_iterations(dropped_share(cloud.size(), keep)));
+    const int rounds = recover_rounds(options, iterations);
     RecoverResult result;
     const prune::Ranking first = recover_ranking(scores, candidates, options, 1);
-    GaussianCloud model = cloud.subset(first.keep_best(round_target(cloud.size(), keep, 1, options.rounds)));
+    GaussianCloud model = cloud.subset(first.keep_best(round_target(cloud.size(), keep, 1, rounds)));
     for (int round = 1;; ++round) {
         RecoverRound done;
         done.kept = model.size();
         // Only the last round's model is measured: the others are intermediate.
-        const bool last = round == options.rounds;
+        const bool last = round == rounds;
         if (options.seconds) {
             const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             // A round the earlier ones left no time still takes its one step (planned_iterations).
             const double share =
-                round_seconds(*options.seconds - spent, round, options.rounds, options.round_spacing > 0);
+                round_seconds(*options.seconds - spent, round, rounds, options.round_spacing > 0);
             finetune.seconds = std::max(share, 1e-3);
         } else {
             finetune.seconds.reset();
-            finetune.iterations = round_iterations(iterations, round, options.rounds, options.round_spacing);
+            finetune.iterations = round_iterations(iterations, round, rounds, options.round_spacing);
         }
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
                                     [&](const train::LoopStatus& s) {
@@ -134,7 +146,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
             prune::accumulate(renderer, model, cameras, train, settings, {}, prune::needs_fisher(options.method));
         const prune::Ranking next = recover_ranking(prune::score(model, totals, options.method),
                                                     prune::lossless_mask(totals), options, round + 1);
-        model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, options.rounds)));
+        model = model.subset(next.keep_best(round_target(cloud.size(), keep, round + 1, rounds)));
     }
     result.cloud = std::move(model);
     return result;

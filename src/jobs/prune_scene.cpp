@@ -43,8 +43,9 @@ void check_options(const PruneOptions& options) {
         throw InputError("--max-psnr-drop " + std::to_string(budget->max_psnr_drop), "must be 0 or more (dB)");
     if (options.recover && !options.images_dir)
         throw InputError("--recover", "re-fits to the photos: give them with --images");
-    if (options.recover && options.recover->rounds != 1 && std::holds_alternative<prune::QualityBudget>(options.selector))
-        throw InputError("--rounds " + std::to_string(options.recover->rounds),
+    if (options.recover && options.recover->rounds.value_or(1) != 1 &&
+        std::holds_alternative<prune::QualityBudget>(options.selector))
+        throw InputError("--rounds " + std::to_string(*options.recover->rounds),
                          "a quality budget re-fits each probe once: use one round with --max-psnr-drop");
 }
 

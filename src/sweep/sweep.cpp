@@ -192,7 +192,7 @@ SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, std::span<c
     const auto refit_progress = [&](int round, const train::LoopStatus& status) {
         uint64_t done = status.iteration;
         for (int r = 1; r < round; ++r)
-            done += jobs::round_iterations(iterations, r, recover.rounds, recover.round_spacing);
+            done += jobs::round_iterations(iterations, r, jobs::recover_rounds(recover, iterations), recover.round_spacing);
         reporter.clock.advance(double(done - std::min(done, reported)));
         reported = std::max(reported, done);
         reporter.step(stage, size_t(reported), size_t(iterations));

@@ -114,6 +114,40 @@ TEST(RoundIterations, SpacedRoundsLeaveTheRestToTheLast) {
     }
 }
 
+// Unset, the rounds are five but one per spacing where the re-fit is shorter, so the kept model
+// re-fits at least the spacing; asked for, they are what was asked.
+TEST(RecoverRounds, AShortReFitRunsFewerRoundsUnlessAskedFor) {
+    jobs::RecoverOptions options;
+    EXPECT_EQ(jobs::recover_rounds(options, 50000), jobs::kDefaultRecoverRounds);
+    EXPECT_EQ(jobs::recover_rounds(options, 5000), 5);
+    EXPECT_EQ(jobs::recover_rounds(options, 4999), 4);
+    EXPECT_EQ(jobs::recover_rounds(options, 2500), 2);
+    EXPECT_EQ(jobs::recover_rounds(options, 300), 1);
+    EXPECT_EQ(jobs::recover_rounds(options, 0), 1);
+    options.round_spacing = 500;
+    EXPECT_EQ(jobs::recover_rounds(options, 1500), 3);
+    options.round_spacing = 0;  // equal shares: still at least 1,000 steps a round
+    EXPECT_EQ(jobs::recover_rounds(options, 3000), 3);
+    for (uint64_t iterations : {1000, 2000, 3999, 5000, 60000}) {
+        const int rounds = jobs::recover_rounds(jobs::RecoverOptions(), iterations);
+        EXPECT_GE(jobs::round_iterations(iterations, rounds, rounds, 1000), 1000u) << iterations;
+    }
+    options.rounds = 4;
+    EXPECT_EQ(jobs::recover_rounds(options, 300), 4);
+    jobs::RecoverOptions timed;
+    timed.seconds = 1;
+    EXPECT_EQ(jobs::recover_rounds(timed, 0), jobs::kDefaultRecoverRounds) << "a time budget's steps are not known";
+}
+
+TEST_F(RecoverChecks, AShortReFitWithTheDefaultRoundsRunsOne) {
+    auto options = recover_options();
+    options.recover->iterations = 7;
+    options.recover->rounds.reset();
+    const jobs::PruneResult result = jobs::prune_scene(*renderer, cloud, cameras, options);
+    ASSERT_EQ(result.recover_rounds.size(), 1u);
+    EXPECT_EQ(result.recover_rounds[0].iterations, 7u);
+}
+
 TEST_F(RecoverChecks, TheRoundsTakeExactlyTheIterationsAskedFor) {
     auto options = recover_options();
     options.recover->iterations = 7;

@@ -30,7 +30,7 @@ struct PruneArgs {
     uint64_t seed = 0;
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
     std::optional<double> recover_seconds;
-    std::optional<int> rounds;  // default: jobs::RecoverOptions's, or 1 with a quality budget (which re-fits each probe once)
+    std::optional<int> rounds;  // default: jobs::recover_rounds's, or 1 with a quality budget (which re-fits each probe once)
     uint64_t round_spacing = jobs::RecoverOptions{}.round_spacing;
     std::string round_keep = "sample";
     std::string position_lr = "decay";
@@ -124,8 +124,7 @@ int run_prune(const PruneArgs& args) {
         jobs::RecoverOptions recover;
         if (!args.recover.empty() && args.recover != "auto") recover.iterations = std::stoull(args.recover);
         recover.seconds = args.recover_seconds;
-        const bool quality_budget = std::holds_alternative<prune::QualityBudget>(options.selector);
-        recover.rounds = args.rounds.value_or(quality_budget ? 1 : recover.rounds);
+        recover.rounds = args.rounds;
         recover.round_spacing = args.round_spacing;
         recover.sampled = args.round_keep == "sample";
         recover.finetune.seed = args.seed;
@@ -252,8 +251,8 @@ void register_prune(CLI::App& app, Action& action) {
                         "re-fit (as --recover does) for S seconds of wall time in all, shared by the rounds,\n"
                         "instead of a count of iterations (with --max-psnr-drop: each probe's re-fit)");
     auto* rounds = command->add_option("--rounds", args->rounds,
-                                       "with --recover: prune and re-fit in R rounds (default 5; with --max-psnr-drop\n"
-                                       "1, the only choice), each dropping a geometrically growing share, ranked on the\n"
+                                       "with --recover: prune and re-fit in R rounds (default 5, or one per 1,000\n"
+                                       "iterations where fewer; with --max-psnr-drop 1, the only choice), each dropping a geometrically growing share, ranked on the\n"
                                        "re-fitted model and kept as a weighted sample by score; every round but the\n"
                                        "last re-fits 1,000 iterations, the last the rest")
                        ->check(count_in(1, 100));

@@ -27,7 +27,7 @@ struct SweepArgs {
     uint64_t seed = 0;
     bool force = false;
     uint64_t recover = 0;
-    int recover_rounds = sweep::SweepOptions().recover_rounds;
+    std::optional<int> recover_rounds;
     std::vector<std::string> sizes = sweep::SweepOptions().size_formats;
     ClusterStageArgs cluster;  // the cluster method's stages 1-6
 };

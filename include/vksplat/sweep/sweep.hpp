@@ -70,7 +70,7 @@ struct SweepOptions {
     // by blend weight), and add its row beside the prune-only one as method "<method>+recover".
     // 0: prune only. Each re-fit costs its iterations: on lavapipe, seconds per iteration.
     uint64_t recover_iterations = 0;
-    int recover_rounds = jobs::RecoverOptions().rounds;  // prune --recover's
+    std::optional<int> recover_rounds;  // unset: prune --recover's (jobs::recover_rounds)
     // The scene formats (io::write_scene's names) every model is written in to size it
     // (ModelMeasure::file_bytes), for the charts of PSNR against megabytes per format. SOG is left
     // out by default: its k-means takes about 27 s for 38,605 Gaussians on two CPU cores, more than
