@@ -1,5 +1,5 @@
 // refit_bench: the re-fit jobs (jobs::finetune_scene, what `vksplat finetune` runs, and with --drop
-// jobs::prune_and_recover, what `vksplat prune --method blend --ratio R --recover N` runs) on a GPU host
+// jobs::prune_and_recover, what `vksplat prune --ratio R --recover N` runs) on a GPU host
 // that has a Vulkan driver and no image codecs. Photos come as <name>.npy (uint8 [H, W, 3], made
 // on the host by benchmarks/photos_to_npy.py); quality is PSNR against them on the test views. Prints
 // the test PSNR before and after, the time per iteration (GPU median and wall) with its per-pass
@@ -7,7 +7,7 @@
 // the model takes as the files a size budget (prune --max-mb) counts, before and after the re-fit.
 //
 //   refit_bench lego_50.ply --cameras lego/cameras.json --photos npy/ --background 1,1,1 --iters 5000
-//   refit_bench lego.ply ... --drop 0.8 --position-lr decay   (blend ranking, 80% dropped, prune --recover's
+//   refit_bench lego.ply ... --drop 0.8 --position-lr decay   (80% dropped, prune --recover's ranking (blend-mix) and
 //     rounds, their spacing and sampling (jobs::RecoverOptions), iterations by the fraction dropped, as a
 //     bare `prune --recover` takes them: jobs::default_recover_iterations)
 //   refit_bench lego.ply ... --drop 0.8 --rounds 3 --round-spacing 0 --sample false   (the schedule before)
@@ -84,10 +84,13 @@ int main(int argc, char** argv) {
     app.add_option("--device", device);
     uint64_t seed = 0;
     app.add_option("--seed", seed, "the order of the training views and the rounds' samples (FinetuneOptions::seed)");
-    app.add_option("--drop", drop, "prune this fraction by blend weight first (then re-fit)");
+    app.add_option("--drop", drop, "prune this fraction first, ranked by --method (then re-fit)");
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop; default: prune --recover's)");
-    std::string method = "blend";
-    app.add_option("--method", method, "the ranking of every round (with --drop): blend, blend-max, volume-blend, fisher (on the CPU)");
+    // prune --recover's default (jobs::score_method_of): a bench that ranked otherwise measured
+    // another re-fit than the one users get.
+    std::string method(prune::to_string(jobs::RecoverOptions().method));
+    app.add_option("--method", method, "the ranking of every round (with --drop; default blend-mix, prune --recover's): blend,\n"
+                   "blend-max, blend-mix, volume-blend, fisher (on the CPU)");
     uint64_t round_spacing = recover_defaults.round_spacing;
     app.add_option("--round-spacing", round_spacing, "iterations of each round but the last (0: an equal share)");
     bool sampled = recover_defaults.sampled;
