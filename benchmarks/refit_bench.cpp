@@ -67,8 +67,6 @@ int main(int argc, char** argv) {
     const jobs::RecoverOptions recover_defaults;
     std::optional<int> rounds;  // unset: jobs::recover_rounds's
     std::string position_lr = "final";
-    uint64_t relocate_every = 0;
-    double opacity_regularization = 0;
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
     app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
@@ -96,10 +94,6 @@ int main(int argc, char** argv) {
     bool sampled = recover_defaults.sampled;
     app.add_option("--sample", sampled,
                    "true: keep a weighted random sample by score in every round, not the best-scored");
-    app.add_option("--relocate-every", relocate_every,
-                   "move the transparent Gaussians onto live ones every N steps of each re-fit (FinetuneOptions::relocate_every)");
-    app.add_option("--opacity-reg", opacity_regularization,
-                   "weight of the mean-opacity loss term (TrainOptions::opacity_regularization; MCMC's is 0.01)");
     app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--sh-degree", sh_degree, "reduce the whole cloud to this SH degree before pruning and re-fitting")
@@ -145,8 +139,6 @@ int main(int argc, char** argv) {
         }
         options.train.background = {background[0], background[1], background[2]};
         if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
-        options.relocate_every = relocate_every;
-        options.train.opacity_regularization = opacity_regularization;
         const auto test = jobs::default_test_views(cameras);
 
         std::map<size_t, io::ImageRGB> test_photos;
@@ -233,8 +225,7 @@ int main(int argc, char** argv) {
                                                                report(s);
                                                            });
             for (size_t r = 0; r < recovered.rounds.size(); ++r)
-                std::printf("round %zu: %zu Gaussians (%zu relocated), %llu iterations%s, %.1f s\n", r + 1,
-                            recovered.rounds[r].kept, recovered.rounds[r].refit.relocated,
+                std::printf("round %zu: %zu Gaussians, %llu iterations%s, %.1f s\n", r + 1, recovered.rounds[r].kept,
                             static_cast<unsigned long long>(recovered.rounds[r].refit.iterations),
                             seconds ? (" of " + std::to_string(recovered.rounds[r].refit.planned_iterations) +
                                        " planned by the budget")

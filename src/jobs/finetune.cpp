@@ -95,33 +95,26 @@ StepTime time_steps(const gpu::Context& context, const GaussianCloud& cloud, con
     return time;
 }
 
-// The re-fit's strategy: the Gaussians as they are but for the transparent, relocated every
-// `relocate_every` steps before step `relocate_until` (0: never); it also stops the loop at a
-// deadline, passing the caller's stop (Ctrl-C) on: the loop takes one stop flag.
-class RefitDeadlineStrategy final : public train::Strategy {
+// The re-fit's strategy (train::RefitStrategy: nothing around the steps) that also stops the loop
+// at a deadline, passing the caller's stop (Ctrl-C) on: the loop takes one stop flag.
+class DeadlineStrategy final : public train::Strategy {
 public:
-    RefitDeadlineStrategy(Clock::time_point deadline, const std::atomic<bool>* user_stop, uint64_t relocate_every,
-                          uint64_t relocate_until)
-        : deadline_(deadline), user_stop_(user_stop), relocate_every_(relocate_every), relocate_until_(relocate_until) {}
+    DeadlineStrategy(Clock::time_point deadline, const std::atomic<bool>* user_stop)
+        : deadline_(deadline), user_stop_(user_stop) {}
     void before_step(train::Trainer&, uint64_t) override {}
-    void after_step(train::Trainer& trainer, uint64_t iteration) override {
+    void after_step(train::Trainer&, uint64_t) override {
         if (user_stop_ && user_stop_->load()) stop_ = true;
         if (Clock::now() >= deadline_) out_of_time_ = stop_ = true;
-        if (relocate_every_ > 0 && iteration % relocate_every_ == 0 && iteration < relocate_until_)
-            relocated_ += trainer.relocate({.min_opacity = train::RelocationRules().min_opacity, .target = 0}).relocated;
     }
     const std::atomic<bool>* stop() const { return &stop_; }
     // The loop stopped because the time was up, not because it was asked to (Ctrl-C).
     bool out_of_time() const { return out_of_time_ && !(user_stop_ && user_stop_->load()); }
-    size_t relocated() const { return relocated_; }
 
 private:
     Clock::time_point deadline_;
     const std::atomic<bool>* user_stop_;
-    uint64_t relocate_every_, relocate_until_;
     std::atomic<bool> stop_{false};
     bool out_of_time_ = false;
-    size_t relocated_ = 0;
 };
 
 }  // namespace
@@ -194,9 +187,9 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
 
     // Without a budget the deadline lies beyond any run (as does one of more than 30 years).
     const auto budget = std::chrono::duration<double>(std::min(options.seconds.value_or(1e9), 1e9));
-    RefitDeadlineStrategy strategy(
-        options.seconds ? start + std::chrono::duration_cast<Clock::duration>(budget) : Clock::time_point::max(),
-        options.stop, options.relocate_every, uint64_t(options.relocate_until * double(iterations)));
+    DeadlineStrategy strategy(options.seconds ? start + std::chrono::duration_cast<Clock::duration>(budget)
+                                              : Clock::time_point::max(),
+                              options.stop);
     // With a time budget the planned count sets only the position rate's decay: the steps timed
     // beforehand ran slower than the run's (bonsai on an H200: planned 5,438 steps in 8.5 s of an
     // 18 s share), so the run goes on at the final rate until the deadline instead of ending early.
@@ -210,7 +203,6 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
         train::run_training_loop(*trainer, strategy, cameras, result.train_views, train_photos, loop, progress);
     if (strategy.out_of_time()) result.interrupted = false;
     result.device_bytes = trainer->device_bytes();
-    result.relocated = strategy.relocated();
     result.cloud = trainer->cloud();
     if (result.interrupted) return result;
     if (quality) result.after = quality(result.cloud);

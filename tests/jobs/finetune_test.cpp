@@ -4,7 +4,6 @@
 // when asked; a run that learns nothing fails; test views that are trained on are said to be.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -156,31 +155,6 @@ TEST_F(Finetune, SaysWhenTheTestViewsAreTrainedOn) {
     notices.clear();
     EXPECT_TRUE(run(truth, o).held_out);
     EXPECT_TRUE(notices.empty());
-}
-
-// With relocate_every, the Gaussians that went transparent are moved onto live ones and the count
-// stays; without it, they stay where they are.
-TEST_F(Finetune, RelocatesTheTransparentOnlyWhenAsked) {
-    GaussianCloud faded = truth;
-    constexpr size_t kFaded = 10;
-    for (size_t i = 0; i < kFaded; ++i) faded.opacity_logits[i] = -12.0f;  // opacity 6e-6
-    const auto transparent = [](const GaussianCloud& cloud) {
-        size_t n = 0;
-        for (float logit : cloud.opacity_logits) n += 1.0 / (1.0 + std::exp(-double(logit))) <= 0.005 ? 1 : 0;
-        return n;
-    };
-    auto o = options;
-    o.checkpoint.clear();
-    o.out.clear();
-    const jobs::FinetuneResult kept = run(faded, o);
-    EXPECT_EQ(kept.relocated, 0u);
-    EXPECT_GE(transparent(kept.cloud), kFaded);
-
-    o.relocate_every = 2;  // at step 2 of 4 (before 0.8 of the run)
-    const jobs::FinetuneResult moved = run(faded, o);
-    EXPECT_GE(moved.relocated, kFaded);
-    EXPECT_EQ(moved.cloud.size(), faded.size()) << "relocation moves Gaussians, it adds none";
-    EXPECT_EQ(transparent(moved.cloud), 0u);
 }
 
 }  // namespace

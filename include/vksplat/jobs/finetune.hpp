@@ -73,12 +73,6 @@ struct FinetuneOptions {
     uint64_t checkpoint_every = 1000;
     bool resume = false;               // continue from `checkpoint` (which must exist)
     const std::atomic<bool>* stop = nullptr;  // raised: checkpoint and return with interrupted set
-    // Moves the Gaussians that went transparent onto live ones every `relocate_every` steps
-    // (train::Trainer::relocate, 3DGS-MCMC's relocation without growth) until `relocate_until` of
-    // the run's steps, so a pruned model re-uses its whole count instead of carrying dead
-    // Gaussians. 0: never.
-    uint64_t relocate_every = 0;
-    double relocate_until = 0.8;
 
     // Where the re-fitted scene is written (io::write_scene, format by extension); checked, with
     // the checkpoint, before anything else. Empty: not written (FinetuneResult::cloud only).
@@ -110,7 +104,6 @@ struct FinetuneResult : train::LoopResult {
     bool held_out = true;                // no test view was trained on (ViewSplit::held_out)
     double scene_extent = 0;             // what the position rate was scaled by
     uint64_t planned_iterations = 0;     // with a time budget: the count its timed steps planned
-    size_t relocated = 0;                // Gaussians moved by relocate_every, over the run
 };
 
 // The iterations a time budget of `seconds` holds at `step_seconds` a step: at least 1 (a re-fit
