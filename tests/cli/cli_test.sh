@@ -661,8 +661,8 @@ expect prune-max-mb-sh-bits 0 "wrote $work/max65.spz" -- "$vksplat" prune "$work
   --cameras "$work/cameras.json" --method opacity --max-mb 0.3 --sh-bits 6,5 -o "$work/max65.spz"
 [ -f "$work/max65.spz" ] && [ "$(stat -c %s "$work/max65.spz")" -le 300000 ] && passed=$((passed + 1)) ||
   { failed=$((failed + 1)); echo "FAILED: prune --max-mb 0.3 --sh-bits 6,5 wrote more than 300000 bytes"; }
-expect prune-sh-bits-range any-failure "--sh-bits" -- "$vksplat" prune "$work/demo/demo.ply" \
-  --cameras "$work/cameras.json" --method opacity --ratio 0.5 --sh-bits 9,5 -o "$work/bits.spz"
+expect prune-sh-bits-range 2 "--sh-bits 9,5: SH bits must be whole numbers from 1 to 8" -- "$vksplat" prune \
+  "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --ratio 0.5 --sh-bits 9,5 -o "$work/bits.spz"
 refused_before_work prune-max-mb-too-small "$work/tiny.spz" \
   "--max-mb 1e-05: no model fits in it: the smallest, one Gaussian at SH degree 0, takes" -- "$vksplat" prune \
   "$work/demo/demo.ply" --cameras "$work/cameras.json" --method opacity --max-mb 0.00001 -o "$work/tiny.spz"

@@ -226,8 +226,7 @@ void register_prune(CLI::App& app, Action& action) {
                         "B1,B2: keep B1 bits of SPZ's SH byte for degree 1 and B2 for degrees 2 and 3 (1..8; "
                         "SPZ's own encoder: 5,4); a smaller SPZ, and --max-mb measures at it")
         ->delimiter(',')
-        ->expected(2)
-        ->check(count_in(1, 8));
+        ->expected(2);  // the range is the library's to refuse (prune::check_sh_precision), as for convert
     command->add_option("--save-scores", args->save_scores, "write the scores as float32 [N] .npy");
     command->add_option("--save-totals", args->save_totals, "write the view totals as float32 [N, 5] .npy");
     command->add_option("--load-scores", args->load_scores, "scores or totals saved before, instead of rendering")
