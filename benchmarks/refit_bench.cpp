@@ -212,8 +212,7 @@ int main(int argc, char** argv) {
             recover.finetune = options;
             const double pruned =
                 quality(cloud.subset(jobs::recover_ranking(scores, candidates, recover, 1).keep_best(keep))).mean_psnr;
-            const uint64_t planned =
-                iterations.value_or(jobs::default_recover_iterations(1.0 - double(keep) / double(cloud.size())));
+            const uint64_t planned = jobs::recover_iterations(recover, cloud.size(), keep);
             const int round_count = jobs::recover_rounds(recover, planned);
             if (seconds)
                 std::printf("a budget of %g s over %d rounds\n", *seconds, round_count);

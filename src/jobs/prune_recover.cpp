@@ -51,7 +51,7 @@ int recover_rounds(const RecoverOptions& options, uint64_t iterations) {
     // A resumed re-fit continues one round (check_rounds refuses several).
     if (options.finetune.resume) return 1;
     if (options.seconds) return kDefaultRecoverRounds;
-    const uint64_t unit = options.round_spacing > 0 ? options.round_spacing : RecoverOptions().round_spacing;
+    const uint64_t unit = options.round_spacing > 0 ? options.round_spacing : kDefaultRoundSpacing;
     return int(std::clamp<uint64_t>(iterations / unit, 1, kDefaultRecoverRounds));
 }
 
@@ -81,10 +81,14 @@ double round_seconds(double remaining, int round, int rounds, bool spaced) {
     return spaced && round < rounds ? std::min(equal, kSpacedRoundShare * remaining) : equal;
 }
 
+uint64_t recover_iterations(const RecoverOptions& options, size_t n, size_t kept) {
+    return options.iterations.value_or(default_recover_iterations(dropped_share(n, kept)));
+}
+
 FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept) {
     FinetuneOptions finetune = options.finetune;
     finetune.seconds = options.seconds;
-    finetune.iterations = options.iterations.value_or(default_recover_iterations(dropped_share(n, kept)));
+    finetune.iterations = recover_iterations(options, n, kept);
     return finetune;
 }
 
@@ -114,7 +118,7 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
     settings.max_sh_degree = finetune.train.sh_degree;
 
     const auto start = std::chrono::steady_clock::now();
-    const uint64_t iterations = options.iterations.value_or(default_recover_iterations(dropped_share(cloud.size(), keep)));
+    const uint64_t iterations = recover_iterations(options, cloud.size(), keep);
     const int rounds = recover_rounds(options, iterations);
     RecoverResult result;
     const prune::Ranking first = recover_ranking(scores, candidates, options, 1);

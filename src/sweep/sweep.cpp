@@ -189,10 +189,10 @@ SweepRow recover_row(Renderer& renderer, const GaussianCloud& cloud, std::span<c
     const std::string stage = "re-fit of " + method + " at " + fraction_label(pruned.fraction) + " dropped";
     const uint64_t iterations = options.recover_iterations;
     uint64_t reported = 0;
+    const int rounds = jobs::recover_rounds(recover, iterations);
     const auto refit_progress = [&](int round, const train::LoopStatus& status) {
         uint64_t done = status.iteration;
-        for (int r = 1; r < round; ++r)
-            done += jobs::round_iterations(iterations, r, jobs::recover_rounds(recover, iterations), recover.round_spacing);
+        for (int r = 1; r < round; ++r) done += jobs::round_iterations(iterations, r, rounds, recover.round_spacing);
         reporter.clock.advance(double(done - std::min(done, reported)));
         reported = std::max(reported, done);
         reporter.step(stage, size_t(reported), size_t(iterations));

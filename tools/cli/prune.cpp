@@ -31,7 +31,7 @@ struct PruneArgs {
     std::string recover;  // --recover's N, "auto" without one (by the fraction dropped), empty if not given
     std::optional<double> recover_seconds;
     std::optional<int> rounds;  // default: jobs::recover_rounds's, or 1 with a quality budget (which re-fits each probe once)
-    uint64_t round_spacing = jobs::RecoverOptions{}.round_spacing;
+    uint64_t round_spacing = jobs::kDefaultRoundSpacing;
     std::string round_keep = "sample";
     std::string position_lr = "decay";
     bool force = false;

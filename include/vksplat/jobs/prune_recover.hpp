@@ -22,6 +22,9 @@ namespace vksplat::jobs {
 // iterations where three equal rounds keeping the best lost -0.564 / -0.940 (one run), and
 // -0.196 / -0.649 with the 50,000 default_recover_iterations gives now; 90% -1.637 / -2.749
 // against -2.017 / -3.124.
+// Iterations of each re-fit round but the last (RecoverOptions::round_spacing says why).
+inline constexpr uint64_t kDefaultRoundSpacing = 1000;
+
 struct RecoverOptions {
     // Re-fit iterations in all, split over the rounds (round_iterations); unset: as many as
     // default_recover_iterations gives for the fraction dropped.
@@ -36,7 +39,7 @@ struct RecoverOptions {
     // in rounds 1,000 steps apart and trains the kept Gaussians for the rest of its run; spacing
     // does the same here, so that the last round, the one whose model is kept, re-fits longest
     // (bonsai 80%, 3 rounds: -0.408 dB at 1,000 and -0.411 at 2,000 against -0.564 equal).
-    uint64_t round_spacing = 1000;
+    uint64_t round_spacing = kDefaultRoundSpacing;
     // The ranking of rounds after the first. blend-mix re-fits best (5 sampled rounds, means of 3
     // seeds: bonsai 80% -0.060 dB against blend's -0.196 and blend-max's -0.331, 90% -1.199
     // against -1.637 and -1.417; lego 80% -0.388 against -0.649 and -0.362, 90% -2.375 against
@@ -63,11 +66,12 @@ struct RecoverResult {
 };
 
 // The rounds a re-fit of `iterations` steps runs: options.rounds where set; otherwise
-// kDefaultRecoverRounds, but one per round_spacing steps (1,000 where spacing is 0) where the
-// re-fit is shorter, so that the round whose model is kept re-fits at least that long (snowmiku
-// at 0.9 MB, 300 iterations, the same choice of 37,274 Gaussians: five rounds of 60 steps lost
-// 0.535 dB, one round of 300 0.461; one run each). A time budget (options.seconds) keeps the five: its
-// steps are not known ahead, and its last round takes what the early ones leave (round_seconds).
+// kDefaultRecoverRounds, but one per round_spacing steps (kDefaultRoundSpacing where spacing is
+// 0) where the re-fit is shorter, so that the round whose model is kept re-fits at least that long
+// (snowmiku at 0.9 MB, 300 iterations, the same choice of 37,274 Gaussians: five rounds of 60
+// steps lost 0.535 dB, one round of 300 0.461; one run each). A time budget (options.seconds)
+// keeps the five: its steps are not known ahead, and its last round takes what the early ones
+// leave (round_seconds).
 inline constexpr int kDefaultRecoverRounds = 5;
 int recover_rounds(const RecoverOptions& options, uint64_t iterations);
 
@@ -79,9 +83,13 @@ size_t round_target(size_t n, size_t target, int round, int rounds);
 // at least one) and the last the rest.
 uint64_t round_iterations(uint64_t iterations, int round, int rounds, uint64_t spacing = 0);
 
-// The re-fit of one round that prunes `n` Gaussians to `kept`: options.finetune with the round's
-// iterations (options.iterations, else default_recover_iterations of the fraction dropped) or, with
-// options.seconds, that time budget. What each probe of a quality budget runs.
+// The re-fit iterations in all of pruning `n` Gaussians to `kept`: options.iterations, else
+// default_recover_iterations of the fraction dropped.
+uint64_t recover_iterations(const RecoverOptions& options, size_t n, size_t kept);
+
+// The re-fit of one round that prunes `n` Gaussians to `kept`: options.finetune with
+// recover_iterations or, with options.seconds, that time budget. What each probe of a quality
+// budget runs.
 FinetuneOptions single_refit(const RecoverOptions& options, size_t n, size_t kept);
 
 // The re-fit iterations when none are asked for, by the fraction of the Gaussians dropped (0..1):

@@ -67,8 +67,8 @@ struct SweepOptions {
     std::string scene_label;                   // names the scene in the report, e.g. its path
     // Re-fit every pruned model (fraction above 0) to the photos for this many iterations, with
     // prune --recover's schedule (jobs/prune_recover.hpp; rounds after the first rank cluster rows
-    // by the re-fit's default, blend-mix), and add its row beside the prune-only one as method "<method>+recover".
-    // 0: prune only. Each re-fit costs its iterations: on lavapipe, seconds per iteration.
+    // by the re-fit's default, blend-mix), and add its row beside the prune-only one as method
+    // "<method>+recover". 0: prune only. Each re-fit costs its iterations: on lavapipe, seconds per iteration.
     uint64_t recover_iterations = 0;
     std::optional<int> recover_rounds;  // unset: prune --recover's (jobs::recover_rounds)
     // The scene formats (io::write_scene's names) every model is written in to size it
