@@ -10,18 +10,12 @@
 
 #include "shaders/common/buffers.h"
 #include "shaders/common/gaussian_shape.glsl"
+#include "shaders/common/hash.glsl"
 #include "shaders/train/position_noise.h"
 
 layout(local_size_x = 256) in;
 
 layout(push_constant) uniform Push { PositionNoisePush pc; };
-
-// PCG's output hash (O'Neill 2014, as Jarzynski & Olano 2020 use it for GPU noise).
-uint pcg_hash(uint v) {
-    const uint state = v * 747796405u + 2891336453u;
-    const uint word = ((state >> ((state >> 28u) + 4u)) ^ state) * 277803737u;
-    return (word >> 22u) ^ word;
-}
 
 // A uniform number in (0, 1]: never 0, whose log Box-Muller takes.
 float uniform01(uint v) { return (float(pcg_hash(v) >> 8u) + 1.0) / 16777216.0; }

@@ -8,6 +8,7 @@
 #include "vksplat/error.hpp"
 #include "vksplat/prune/fisher.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/train/fisher_probes.hpp"
 
 namespace vksplat::prune {
 
@@ -37,12 +38,12 @@ ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std:
     for (size_t i = 0; i < cloud.size(); ++i)
         totals.footprint[i] = double(opacity[i]) * std::numbers::pi * double(sums.radius_squared[i]);
     if (fisher) {
-        FisherInformation information(cloud, settings);
-        for (size_t done = 0; done < picked.size(); ++done) {
-            information.add_view(picked[done]);
-            if (progress) progress(picked.size() + done + 1, steps);
-        }
-        totals.fisher = information.log_dets();
+        const auto matrices = train::estimate_fisher(renderer.context(), cloud, picked, settings, {},
+                                                     [&](size_t done, size_t) {
+                                                         if (progress) progress(picked.size() + done, steps);
+                                                     });
+        totals.fisher.resize(matrices.size());
+        for (size_t i = 0; i < matrices.size(); ++i) totals.fisher[i] = float(fisher_log_det(matrices[i]));
     }
     return totals;
 }

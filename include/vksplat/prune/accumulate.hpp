@@ -22,8 +22,9 @@ struct ViewTotals {
     std::vector<uint64_t> pixels;          // pixels where alpha reached 1/255, summed over views
     std::vector<double> footprint;         // sum over views of opacity * pi * radius^2 (visible views)
     std::vector<uint32_t> views_visible;   // views in which it survived culling
-    // log det of PUP 3D-GS's Fisher information summed over the views (fisher.hpp); empty unless
-    // accumulate() was asked for it, which costs a CPU pass over every pixel.
+    // log det of PUP 3D-GS's Fisher information summed over the views (fisher.hpp), estimated by
+    // random-sign probes through the backward pass (train/fisher_probes.hpp); empty unless
+    // accumulate() was asked for it.
     std::vector<float> fisher;
     size_t views = 0;                      // how many views were summed
 
@@ -39,8 +40,9 @@ using Progress = std::function<void(size_t done, size_t total)>;
 // renders the statistics of each of `views` (indices into `cameras`) and sums them
 // (Renderer::render_stats_totals, which sums them on the device where it can); the footprint is
 // opacity * pi * the summed squared radii. `settings` gives the background and SH degree. With
-// `fisher` it also sums the Fisher information of each view (ViewTotals::fisher; the cloud must be
-// sanitised), a CPU pass after the renders: `progress` then counts to twice the views.
+// `fisher` it also estimates the Fisher information of each view (ViewTotals::fisher; the cloud must
+// be sanitised), train::estimate_fisher's probes after the renders: `progress` then counts to
+// twice the views.
 // Throws InputError for a view index out of range.
 ViewTotals accumulate(Renderer& renderer, const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                       const std::vector<size_t>& views, const RenderSettings& settings,
