@@ -102,7 +102,9 @@ void check_recover(const RecoverOptions& options, const std::vector<Camera>& cam
 prune::Ranking recover_ranking(std::span<const float> scores, std::span<const uint8_t> candidates,
                                const RecoverOptions& options, int round) {
     if (!options.sampled) return prune::Ranking(scores, candidates);
-    return prune::Ranking(prune::sampling_keys(scores, options.finetune.seed + uint64_t(round)), candidates);
+    return prune::Ranking(
+        prune::sampling_keys(prune::sampling_weights(scores, options.method), options.finetune.seed + uint64_t(round)),
+        candidates);
 }
 
 RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer, const GaussianCloud& cloud,

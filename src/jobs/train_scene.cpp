@@ -97,7 +97,8 @@ train::Importance importance_over(const gpu::Context& context, const TrainingDat
                                                            {}, prune::needs_fisher(method));
         std::vector<float> scores = prune::score(cloud, totals, method, seed);
         // Seeded by the count too, which differs between rounds and is the same in a resumed run.
-        return sampling ? prune::sampling_keys(scores, seed ^ (uint64_t(cloud.size()) << 20)) : scores;
+        return sampling ? prune::sampling_keys(prune::sampling_weights(scores, method), seed ^ (uint64_t(cloud.size()) << 20))
+                        : scores;
     };
 }
 

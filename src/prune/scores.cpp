@@ -116,6 +116,14 @@ std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, S
     throw std::invalid_argument("prune::score: unknown ScoreMethod");
 }
 
+std::vector<float> sampling_weights(std::span<const float> scores, ScoreMethod method) {
+    std::vector<float> weights(scores.begin(), scores.end());
+    if (method != ScoreMethod::fisher || weights.empty()) return weights;
+    const float largest = *std::max_element(weights.begin(), weights.end());
+    for (float& w : weights) w = float(std::exp((double(w) - double(largest)) / 6.0));
+    return weights;
+}
+
 double percentile(std::vector<double> values, double percent) {
     if (values.empty()) return 0.0;
     std::sort(values.begin(), values.end());

@@ -116,6 +116,22 @@ TEST(ScoreValues, RandomIsDeterministicPortableAndSeeded) {
     }
 }
 
+TEST(ScoreValues, SamplingWeighsFisherByTheSixthRootOfItsDeterminant) {
+    // log det F of -120 (a Gaussian no pixel pins down), -6, 0 and 12: weights det^(1/6) / largest.
+    const std::vector<float> fisher = {-120.0f, -6.0f, 0.0f, 12.0f};
+    const std::vector<float> weights = prune::sampling_weights(fisher, prune::ScoreMethod::fisher);
+    ASSERT_EQ(weights.size(), 4u);
+    EXPECT_FLOAT_EQ(weights[3], 1.0f);
+    EXPECT_FLOAT_EQ(weights[2], float(std::exp(-2.0)));
+    EXPECT_FLOAT_EQ(weights[1], float(std::exp(-3.0)));
+    EXPECT_GT(weights[0], 0.0f) << "still drawn, rarely";
+    EXPECT_LT(weights[0], 1e-9f);
+    // The sums of contributions are weights as they are.
+    const std::vector<float> blend = {0.0f, 2.5f, 7.0f};
+    EXPECT_EQ(prune::sampling_weights(blend, prune::ScoreMethod::blend_mix), blend);
+    EXPECT_TRUE(prune::sampling_weights({}, prune::ScoreMethod::fisher).empty());
+}
+
 TEST_F(Scores, HiddenBehindAnOpaqueWallScoresZeroAndOffScreenIsDroppedLosslessly) {
     GaussianCloud cloud;
     // Four layers of flat, wide, 0.99-opaque splats stop every pixel before what lies behind.

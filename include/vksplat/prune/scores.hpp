@@ -2,6 +2,7 @@
 // Importance scores: one number per Gaussian, higher = more worth keeping. Selection
 // (selection.hpp) drops the lowest.
 #include <cstdint>
+#include <span>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -43,6 +44,12 @@ std::vector<float> opacities(const GaussianCloud& cloud);
 // totals without it (such as a file of five columns).
 std::vector<float> score(const GaussianCloud& cloud, const ViewTotals& totals, ScoreMethod method,
                          uint64_t seed = 0);
+
+// The weights a sampled selection draws by (selection.hpp's sampling_keys): the scores themselves,
+// which are sums of contributions, but for fisher, whose score is a logarithm (log det F, negative
+// for many a Gaussian that matters): det(F)^(1/6), the geometric mean of F's eigenvalues (a
+// sensitivity per parameter), divided by the largest (the sample depends on ratios only).
+std::vector<float> sampling_weights(std::span<const float> scores, ScoreMethod method);
 
 // np.percentile(values, percent) with its default (linear) interpolation; 0 for no values.
 double percentile(std::vector<double> values, double percent);
