@@ -130,6 +130,8 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         done.kept = model.size();
         // Only the last round's model is measured: the others are intermediate.
         const bool last = round == rounds;
+        if (last && options.before_last_refit)
+            model = options.before_last_refit(model, prune::accumulate(renderer, model, cameras, train, settings).blend);
         if (options.seconds) {
             const double spent = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
             // A round the earlier ones left no time still takes its one step (planned_iterations).

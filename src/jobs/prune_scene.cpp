@@ -12,6 +12,7 @@
 #include "vksplat/io/formats.hpp"
 #include "vksplat/prune/score_files.hpp"
 #include "vksplat/prune/selection.hpp"
+#include "vksplat/prune/sh_reduction.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -145,16 +146,24 @@ void report_rounds(PruneResult& result, const RecoverResult& recovered) {
 }
 
 // The size budget's choice (result.budget) re-fitted: its count reached in the rounds asked for
-// from the cloud at the chosen model's degree, then its bands per Gaussian dropped again and its
-// least Gaussians, if need be, until the file fits (prune::fit_refitted).
+// from the cloud at the chosen model's degree, its share of bands per Gaussian dropped before the
+// last round's re-fit (RecoverOptions::before_last_refit), then dropped again by the re-fitted
+// coefficients (the re-fit gives the dropped bands some colour back, which the file would pay
+// for) and its least Gaussians, if need be, until the file fits (prune::fit_refitted).
 GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud,
                                 const std::vector<Camera>& cameras, const Scored& scored, const PhotoSource& photos,
                                 const RecoverOptions& recover, const prune::SizeBudget& size,
                                 const PruneOptions& options, const PruneProgress& progress) {
     const prune::BudgetResult& choice = *result.budget;
     const GaussianCloud start = choice.sh_degree < cloud.sh_degree ? cloud.with_sh_degree(choice.sh_degree) : cloud;
+    const double sh_share = prune::model_sh_share(choice, cloud.sh_degree);
+    RecoverOptions rounds = recover;
+    if (sh_share > 0.0)
+        rounds.before_last_refit = [sh_share](const GaussianCloud& model, std::span<const double> blend) {
+            return prune::with_sh_share_dropped(model, blend, sh_share);
+        };
     RecoverResult recovered = prune_and_recover(renderer.context(), renderer, start, scored.scores, scored.candidates,
-                                                choice.kept, cameras, photos, recover, {}, progress.refit);
+                                                choice.kept, cameras, photos, rounds, {}, progress.refit);
     report_rounds(result, recovered);
     // Which bands cost least and which Gaussians go first if the file outgrows the budget, by the
     // re-fitted model's own blend weights: its Gaussians are not the choice's (the rounds re-rank
@@ -165,8 +174,8 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
     prune::SizeBudget chosen = size;
     chosen.sh_precision = choice.sh_precision;
     return prune::fit_refitted(recovered.cloud, totals.blend,
-                               prune::score(recovered.cloud, totals, score_method_of(options), options.seed),
-                               prune::model_sh_share(choice, cloud.sh_degree), chosen);
+                               prune::score(recovered.cloud, totals, score_method_of(options), options.seed), sh_share,
+                               chosen);
 }
 
 // Prune and re-fit (options.recover): with a quality budget, every probe is re-fitted (one round)

@@ -3,9 +3,11 @@
 // steps, shared by the rounds, and stops the run long before an iteration count it replaces would.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -154,6 +156,45 @@ TEST_F(RecoverBudget, TheRoundsShareOneBudget) {
     for (const jobs::RecoverRound& round : result.rounds) EXPECT_GE(round.refit.iterations, 1u);
     EXPECT_GE(seconds, 3.0) << "the rounds ended before the budget's deadline";
     EXPECT_LT(seconds, 30) << "a 3 s budget over 3 rounds ran " << seconds << " s";
+}
+
+// A size budget drops SH bands before the last round's re-fit (prune_scene), through
+// RecoverOptions::before_last_refit: it sees the last round's model at its count with that model's
+// blend weights, once, and what it returns is what the last round re-fits.
+TEST_F(RecoverBudget, TheLastRoundReFitsWhatBeforeLastRefitMadeOfItsModel) {
+    const prune::ViewTotals totals = prune::accumulate(renderer, truth, cameras, {1, 2, 3, 4}, RenderSettings{});
+    const std::vector<float> scores = prune::score(truth, totals, prune::ScoreMethod::blend);
+    jobs::RecoverOptions recover;
+    recover.iterations = 4;
+    recover.rounds = 2;
+    recover.finetune = options;
+    const size_t keep = truth.size() / 5;
+    int calls = 0;
+    recover.before_last_refit = [&](const GaussianCloud& model, std::span<const double> blend) {
+        ++calls;
+        EXPECT_EQ(model.size(), keep);
+        EXPECT_EQ(blend.size(), model.size());
+        EXPECT_GT(*std::max_element(blend.begin(), blend.end()), 0.0);
+        GaussianCloud dark = model;
+        const size_t stride = size_t(dark.sh_coefficients()) * 3;
+        for (size_t i = 0; i < dark.size(); ++i) std::fill_n(&dark.sh[i * stride + 3], stride - 3, 0.0f);
+        return dark;
+    };
+    const jobs::RecoverResult result = jobs::prune_and_recover(context(), renderer, truth, scores,
+                                                               prune::lossless_mask(totals), keep, cameras, photos, recover);
+    EXPECT_EQ(calls, 1);
+    ASSERT_EQ(result.cloud.size(), keep);
+    // Two re-fit steps move a coefficient by about two of its learning rate (Adam), far less than
+    // the scene's own higher SH, which the hook zeroed.
+    const auto largest_higher_sh = [](const GaussianCloud& cloud) {
+        const size_t stride = size_t(cloud.sh_coefficients()) * 3;
+        float largest = 0.0f;
+        for (size_t i = 0; i < cloud.size(); ++i)
+            for (size_t k = 3; k < stride; ++k) largest = std::max(largest, std::abs(cloud.sh[i * stride + k]));
+        return largest;
+    };
+    EXPECT_LT(largest_higher_sh(result.cloud), 0.01f);
+    EXPECT_GT(largest_higher_sh(truth), 0.1f);
 }
 
 }  // namespace

@@ -51,6 +51,11 @@ struct RecoverOptions {
     // more than 5 at 80%, -0.493).
     bool sampled = true;
     FinetuneOptions finetune;     // views, rates, loss, background (its iterations are set per round)
+    // Applied to the last round's model once it is pruned to its count, before its re-fit, with
+    // that model's blend weights over the training views: a size budget drops SH bands here
+    // (jobs::prune_scene), so that the longest re-fit adapts the rest to their loss. Dropped after
+    // the re-fit instead, nothing made up for them: snowmiku at 0.9 MB lost 0.461 dB that way.
+    std::function<GaussianCloud(const GaussianCloud& model, std::span<const double> blend)> before_last_refit;
 
     RecoverOptions() { finetune.train.position_schedule = train::PositionSchedule::decay; }
 };

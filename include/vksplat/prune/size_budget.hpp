@@ -56,8 +56,8 @@ void check_size_reachable(const GaussianCloud& smallest, const SizeBudget& budge
 double model_sh_share(const BudgetResult& choice, int cloud_degree);
 
 // The model a size budget chose, after its re-fit: `refitted`, re-fitted at the chosen model's
-// degree with every band (the re-fit gives colour to bands the choice had dropped, which the file
-// would pay for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
+// degree (the re-fit gives colour back to the bands the choice dropped, which the file would pay
+// for), with `sh_share` (model_sh_share) of its higher bands dropped per Gaussian again,
 // the cheapest by its own re-fitted coefficients and `weights` (its blend weights, one per
 // Gaussian, or empty; sh_reduction.hpp), at the budget's SH precision (full where unset); then,
 // if its file does not fit (re-fitted values compress less well), only as many of its best
