@@ -15,6 +15,8 @@
 //     `prune --recover-seconds 60`), --lr sh_dc=0.5 --lr opacity=0.5 (rates times a factor)
 //   refit_bench bonsai.spz ... --drop 0.8 --sh-degree 1   (a size point: the whole cloud at SH degree 1,
 //     as `prune --max-mb` may choose it, pruned and re-fitted; its bytes as SPZ and compressed PLY)
+//   refit_bench bonsai.spz ... --max-mb 3 --position-lr decay   (`prune --max-mb 3 --recover -o out.spz`:
+//     the size search, its choice re-fitted in prune --recover's rounds, the file written and measured)
 //   refit_bench bonsai.spz ... --keep keep85.npy --subject --save refit.ply
 //     (what `vksplat cluster prune --recover N` re-fits: the Gaussians the mask keeps, the loss of each
 //     training view masked to the subject region of the whole scene's render, quality = PSNR inside
@@ -35,6 +37,7 @@
 #include "vksplat/io/npy.hpp"
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_recover.hpp"
+#include "vksplat/jobs/prune_scene.hpp"
 #include "vksplat/prune/accumulate.hpp"
 #include "vksplat/prune/sh_precision.hpp"
 #include "vksplat/prune/size_budget.hpp"
@@ -61,7 +64,7 @@ int main(int argc, char** argv) {
     bool subject_only = false, whole_loss = false;
     std::vector<float> background{0, 0, 0};
     std::optional<uint64_t> iterations;  // unset: 5000, or with --drop by the fraction dropped
-    std::optional<double> drop, seconds;
+    std::optional<double> drop, seconds, max_mb;
     std::optional<int> sh_degree;
     std::vector<std::string> rate_factors;
     const jobs::RecoverOptions recover_defaults;
@@ -82,7 +85,11 @@ int main(int argc, char** argv) {
     app.add_option("--device", device);
     uint64_t seed = 0;
     app.add_option("--seed", seed, "the order of the training views and the rounds' samples (FinetuneOptions::seed)");
-    app.add_option("--drop", drop, "prune this fraction first, ranked by --method (then re-fit)");
+    auto* drop_option = app.add_option("--drop", drop, "prune this fraction first, ranked by --method (then re-fit)");
+    app.add_option("--max-mb", max_mb,
+                   "instead of --drop: `prune --max-mb M --recover -o out.spz` (jobs::prune_scene with a size budget;\n"
+                   "the file written to --save, else /tmp/refit_bench_max_mb.spz)")
+        ->excludes(drop_option);
     app.add_option("--rounds", rounds, "prune-re-fit rounds (with --drop; default: prune --recover's)");
     // prune --recover's default (jobs::score_method_of): a bench that ranked otherwise measured
     // another re-fit than the one users get.
@@ -181,6 +188,44 @@ int main(int argc, char** argv) {
                 std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
                             static_cast<unsigned long long>(s.iteration), s.loss, s.psnr, s.seconds);
         };
+        if (max_mb) {
+            jobs::RecoverOptions recover;
+            recover.iterations = iterations;
+            recover.seconds = seconds;
+            recover.rounds = rounds;
+            recover.round_spacing = round_spacing;
+            recover.sampled = sampled;
+            recover.method = prune::parse_score_method(method);
+            recover.finetune = options;
+            jobs::PruneOptions prune_options;
+            prune_options.method = recover.method;
+            prune::SizeBudget size{.max_bytes = static_cast<size_t>(std::llround(*max_mb * 1e6))};
+            if (!sh_bits.empty()) size.sh_precision = prune::ShPrecision{sh_bits[0], sh_bits[1]};
+            prune_options.selector = size;
+            prune_options.test_views = test;
+            prune_options.photos = photos;
+            prune_options.settings = settings;
+            prune_options.recover = recover;
+            prune_options.out = save.empty() ? "/tmp/refit_bench_max_mb.spz" : save;
+            prune_options.mode = io::WriteMode::overwrite;
+            jobs::PruneProgress progress;
+            progress.refit = [&](int, const train::LoopStatus& s) { report(s); };
+            const jobs::PruneResult pruned = jobs::prune_scene(renderer, cloud, cameras, prune_options, progress);
+            const prune::BudgetResult& choice = *pruned.budget;
+            std::printf("chosen: %zu Gaussians, SH degree %d, %.0f%% of the higher bands dropped per Gaussian, SH bits "
+                        "%d,%d (un-refitted drop %.3f dB)\n",
+                        choice.kept, choice.sh_degree, 100.0 * choice.sh_share, choice.sh_precision.degree1_bits,
+                        choice.sh_precision.higher_bits, choice.drop);
+            for (size_t r = 0; r < pruned.recover_rounds.size(); ++r)
+                std::printf("round %zu: %zu Gaussians, %llu iterations, %.1f s\n", r + 1, pruned.recover_rounds[r].kept,
+                            static_cast<unsigned long long>(pruned.recover_rounds[r].iterations),
+                            pruned.recover_rounds[r].seconds);
+            std::printf("written: %zu Gaussians, %zu bytes (%s)\n", pruned.count_after, pruned.bytes_after,
+                        prune_options.out.string().c_str());
+            std::printf("test PSNR (%zu views): %.3f -> %.3f dB (%+.3f)\n", test.size(), pruned.before->mean_psnr,
+                        pruned.after.mean_psnr, pruned.after.mean_psnr - pruned.before->mean_psnr);
+            return 0;
+        }
         jobs::FinetuneResult result;
         if (!drop) {
             if (!keep_path.empty())

@@ -42,7 +42,7 @@ void check_options(const PruneOptions& options) {
         throw InputError("--threshold", "must be a number");
     if (const auto* budget = std::get_if<prune::QualityBudget>(&options.selector); budget && !(budget->max_psnr_drop >= 0))
         throw InputError("--max-psnr-drop " + std::to_string(budget->max_psnr_drop), "must be 0 or more (dB)");
-    if (options.recover && !options.images_dir)
+    if (options.recover && !options.images_dir && !options.photos)
         throw InputError("--recover", "re-fits to the photos: give them with --images");
     if (options.recover && options.recover->rounds.value_or(1) != 1 &&
         std::holds_alternative<prune::QualityBudget>(options.selector))
@@ -136,7 +136,18 @@ RecoverOptions recover_options(const PruneOptions& options, const PruneResult& r
 }
 
 PhotoSource recover_photos(const PruneOptions& options) {
+    if (options.photos) return options.photos;
     return photos_in_folder(*options.images_dir, options.settings.background);
+}
+
+// The test views' photos as quality targets: from options.photos, else from images_dir.
+eval::TestViews photo_targets(const std::vector<Camera>& cameras, const PruneOptions& options) {
+    if (!options.photos) return eval::photo_targets(cameras, *options.images_dir, options.settings.background);
+    eval::TestViews views;
+    views.cameras = cameras;
+    views.photos = true;
+    for (const Camera& camera : cameras) views.targets.push_back(checked_photo(options.photos, camera).rgb);
+    return views;
 }
 
 // What each round of a re-fit kept and took, for the report.
@@ -246,9 +257,9 @@ PruneResult prune_scene(Renderer& renderer, const GaussianCloud& input, const st
 
     // Photos are read before the long part, so that a missing one is reported at once.
     const std::vector<Camera> test_cameras = pick(cameras, result.test_views);
-    result.against_photos = options.images_dir.has_value();
+    result.against_photos = options.images_dir || options.photos;
     const eval::TestViews targets = result.against_photos
-                                         ? eval::photo_targets(test_cameras, *options.images_dir, options.settings.background)
+                                         ? photo_targets(test_cameras, options)
                                          : eval::render_targets(renderer, cloud, test_cameras, options.settings);
     if (result.against_photos) result.before = eval::measure_quality(renderer, cloud, targets, options.settings, true);
 

@@ -148,6 +148,29 @@ TEST_F(RecoverChecks, AShortReFitWithTheDefaultRoundsRunsOne) {
     EXPECT_EQ(result.recover_rounds[0].iterations, 7u);
 }
 
+// A caller's own photo source (PruneOptions::photos) stands for the folder: the re-fit reads it
+// and quality is measured against it, with no images_dir at all.
+TEST_F(RecoverChecks, PhotosFromTheCallersSourceServeAsTheFolder) {
+    auto from_folder = recover_options();
+    from_folder.out = dir / "from_folder.ply";
+    const jobs::PruneResult expected = jobs::prune_scene(*renderer, cloud, cameras, from_folder);
+    auto from_source = recover_options();
+    from_source.out = dir / "from_source.ply";
+    from_source.images_dir.reset();
+    size_t reads = 0;
+    const jobs::PhotoSource folder = jobs::photos_in_folder(dir / "photos", from_source.settings.background);
+    from_source.photos = [&](const Camera& camera) {
+        ++reads;
+        return folder(camera);
+    };
+    const jobs::PruneResult result = jobs::prune_scene(*renderer, cloud, cameras, from_source);
+    EXPECT_TRUE(result.against_photos);
+    ASSERT_TRUE(result.before.has_value());
+    EXPECT_EQ(result.before->mean_psnr, expected.before->mean_psnr) << "the same photos, the same unpruned scene";
+    EXPECT_EQ(result.count_after, expected.count_after);
+    EXPECT_GE(reads, cameras.size()) << "the test views' targets and the re-fit's views";
+}
+
 TEST_F(RecoverChecks, TheRoundsTakeExactlyTheIterationsAskedFor) {
     auto options = recover_options();
     options.recover->iterations = 7;

@@ -43,6 +43,9 @@ struct PruneOptions {
     std::vector<size_t> test_views;   // empty: default_test_views
     std::vector<size_t> train_views;  // empty: default_train_views
     std::optional<std::filesystem::path> images_dir;  // photos: quality is measured against them
+    // Or the photos from a source of the caller's (in memory, another decoder: refit_bench reads
+    // .npy on hosts without image codecs); used instead of images_dir where set.
+    PhotoSource photos;
     RenderSettings settings;          // background (also composited under the photos' alpha)
     // Write SH up to this degree (capped at the scene's). A quality budget then measures its drop
     // from the unpruned scene at this degree.
@@ -57,12 +60,13 @@ struct PruneOptions {
     // Either kind of file instead of rendering the training views. A scores file is taken as the
     // scores of `method` and carries no pixel counts, so the lossless pass is then skipped.
     std::optional<std::filesystem::path> load_scores;
-    // Re-fit what is kept to the photos (needs images_dir); see jobs/prune_recover.hpp. With a
-    // QualityBudget each probe is re-fitted (one round) and the budget holds after re-fitting. With
-    // a SizeBudget the count chosen is reached in the rounds asked for from the scene at the chosen
-    // model's SH degree, the share of bands it dropped per Gaussian is dropped again (those the
-    // re-fitted model needs least), and if its file then outgrows the budget its least Gaussians go
-    // until it fits (prune::fit_refitted).
+    // Re-fit what is kept to the photos (needs images_dir or photos); see jobs/prune_recover.hpp.
+    // With a QualityBudget each probe is re-fitted (one round) and the budget holds after
+    // re-fitting. With a SizeBudget the count chosen is reached in the rounds asked for from the
+    // scene at the chosen model's SH degree, the share of bands it dropped per Gaussian is dropped
+    // before the last round's re-fit and again after it (those the re-fitted model needs least),
+    // and if its file then outgrows the budget its least Gaussians go until it fits
+    // (prune::fit_refitted).
     std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene, in the format its name says (io::write_scene)
     io::WriteMode mode = io::WriteMode::refuse_existing;
