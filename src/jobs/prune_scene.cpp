@@ -103,6 +103,11 @@ std::vector<Camera> pick(const std::vector<Camera>& cameras, const std::vector<s
     return picked;
 }
 
+// What SH bands cost for the size budget (sh_reduction.hpp): the blend weights, where scored.
+std::span<const double> blend_weights(const Scored& scored) {
+    return scored.totals ? std::span<const double>(scored.totals->blend) : std::span<const double>();
+}
+
 // The keep mask the selector asks for; a quality budget also leaves its probes in `result`.
 prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCloud& cloud, const Scored& scored,
                        const eval::TestViews& targets, const PruneOptions& options, const PruneProgress& progress) {
@@ -113,10 +118,8 @@ prune::KeepMask select(PruneResult& result, Renderer& renderer, const GaussianCl
     if (const auto* count = std::get_if<KeepCount>(&options.selector))
         return prune::select_count(scored.scores, count->count, scored.candidates);
     if (const auto size = size_budget(options)) {
-        const std::span<const double> weights = scored.totals ? std::span<const double>(scored.totals->blend)
-                                                              : std::span<const double>();
-        result.budget = prune::fit_size_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates), weights,
-                                               targets, *size, options.settings, progress.probe);
+        result.budget = prune::fit_size_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates),
+                                               blend_weights(scored), targets, *size, options.settings, progress.probe);
         return result.budget->keep;
     }
     result.budget = prune::fit_quality_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates), targets,
@@ -213,8 +216,21 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
                                                   targets, refitted, options.settings, progress.probe);
         return result.budget->model ? std::move(*result.budget->model) : cloud.subset(result.budget->keep);
     }
-    if (const auto size = size_budget(options)) {
-        select(result, renderer, cloud, scored, targets, options, progress);
+    if (auto size = size_budget(options)) {
+        // The shortlist's re-fits: one round of a tenth of the re-fit's iterations each (at least
+        // one), enough to tell which candidates a re-fit favours, at a fraction of its cost.
+        size->refit = [&](const GaussianCloud& model) {
+            FinetuneOptions shortened = single_refit(recover, cloud.size(), model.size());
+            shortened.seconds.reset();
+            shortened.iterations = std::max<uint64_t>(1, recover_iterations(recover, cloud.size(), model.size()) / 10);
+            return finetune_scene(context, model, cameras, photos, shortened, {},
+                                  [&](const train::LoopStatus& s) {
+                                      if (progress.refit) progress.refit(0, s);
+                                  })
+                .cloud;
+        };
+        result.budget = prune::fit_size_budget(renderer, cloud, prune::Ranking(scored.scores, scored.candidates),
+                                               blend_weights(scored), targets, *size, options.settings, progress.probe);
         result.budget->model.reset();  // un-refitted: the rounds start again from the cloud
         return refit_size_choice(result, renderer, cloud, cameras, scored, photos, recover, *size, options, progress);
     }

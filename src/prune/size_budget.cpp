@@ -147,10 +147,27 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
     BudgetResult result;
     result.met = true;
     if (views.photos) result.baseline_psnr = eval::measure_quality(renderer, cloud, views, settings, false).mean_psnr;
-    const auto probe = [&](size_t kept, const ShChoice& choice, size_t bytes) {
+    struct Candidate {
+        size_t kept, bytes;
+        ShChoice choice;
+        double drop;
+    };
+    std::vector<Candidate> candidates;
+    bool chosen_refitted = false;  // once one is, only re-fitted candidates compete
+    // Measures a candidate (after budget.refit where `refitted`) and keeps it if it is the best so
+    // far of its kind: the re-fitted ones replace the choice by drop as it is.
+    const auto probe = [&](size_t kept, const ShChoice& choice, size_t bytes, bool refitted = false) {
         const auto start = std::chrono::steady_clock::now();
         GaussianCloud model = model_of(kept, choice);
-        const eval::Quality quality = eval::measure_quality(renderer, model, views, settings, false);
+        GaussianCloud measured = model;
+        if (refitted) {
+            // As the re-fitted model is written (fit_refitted): its bands and bits reduced again.
+            measured = budget.refit(model);
+            if (choice.share > 0)
+                measured = with_sh_share_dropped(measured, kept_values(weights, ranking.keep_best(kept)), choice.share);
+            measured = at_precision(std::move(measured), choice.precision);
+        }
+        const eval::Quality quality = eval::measure_quality(renderer, measured, views, settings, false);
         BudgetProbe p;
         p.kept = kept;
         p.sh_degree = model.sh_degree;
@@ -160,10 +177,13 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
         p.psnr = quality.mean_psnr;
         p.drop = psnr_drop(quality, views, result.baseline_psnr, budget.assumed_psnr);
         p.meets = true;
+        p.refitted = refitted;
         p.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         result.probes.push_back(p);
         if (on_probe) on_probe(p);
-        if (!result.model || p.drop < result.drop) {
+        if (!refitted) candidates.push_back({kept, bytes, choice, p.drop});
+        if (!result.model || (refitted && !chosen_refitted) || p.drop < result.drop) {
+            chosen_refitted = refitted;
             result.model = std::move(model);
             result.kept = p.kept;
             result.sh_degree = p.sh_degree;
@@ -205,6 +225,23 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
             if (kept > 0) probe(kept, choice, bytes_of(kept));
         }
         if (all_fit) break;
+    }
+    if (budget.refit && !all_fit) {
+        std::vector<const Candidate*> shortlist;
+        const auto add = [&](const Candidate* c) {
+            if (c && std::find(shortlist.begin(), shortlist.end(), c) == shortlist.end()) shortlist.push_back(c);
+        };
+        for (const ShPrecision& precision : precisions_of(budget)) {
+            const Candidate *least = nullptr, *every_band = nullptr;
+            for (const Candidate& c : candidates) {
+                if (!(c.choice.precision == precision)) continue;
+                if (!least || c.drop < least->drop) least = &c;
+                if (c.choice.degree == cloud.sh_degree && c.choice.share == 0) every_band = &c;
+            }
+            add(least);
+            add(every_band);
+        }
+        for (const Candidate* c : shortlist) probe(c->kept, c->choice, c->bytes, true);
     }
     result.keep = ranking.keep_best(result.kept);
     return result;

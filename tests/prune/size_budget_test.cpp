@@ -197,6 +197,45 @@ TEST_F(SizeBudget, SkipsPerGaussianBandsWhereTheFormatStoresNoZerosCompactly) {
     EXPECT_LT(result.probes.size(), 9u) << "a share too small to empty band 3 is skipped unmeasured";
 }
 
+// With a re-fit to come, a shortlist is measured again after it and the choice is by those
+// measurements alone: at each precision the least drop as it is, and every band at full degree.
+TEST_F(SizeBudget, WithAReFitChoosesAmongTheShortlistAsReFitted) {
+    prune::SizeBudget budget;
+    budget.max_bytes = prune::scene_file_bytes(cloud, "spz") / 3;
+    budget.format = "spz";
+    budget.sh_precision = std::nullopt;
+    const prune::BudgetResult plain = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
+    // A stand-in re-fit that favours the model with every band (share 0): it gets the whole
+    // scene back, a drop of 0; every other candidate stays as it is.
+    std::vector<size_t> refitted_sizes;
+    budget.refit = [&](const GaussianCloud& model) {
+        refitted_sizes.push_back(model.size());
+        GaussianCloud reduced = model;
+        bool every_band = model.sh_degree == cloud.sh_degree;
+        for (size_t i = 0; every_band && i < model.size(); ++i) {
+            const size_t stride = size_t(model.sh_coefficients()) * 3;
+            every_band = model.sh[i * stride + stride - 1] != 0.0f;
+        }
+        return every_band ? cloud : reduced;
+    };
+    const prune::BudgetResult refitted = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
+    const size_t precisions = std::size(prune::kSizeBudgetPrecisions);
+    EXPECT_GE(refitted_sizes.size(), precisions);
+    EXPECT_LE(refitted_sizes.size(), 2 * precisions) << "the shortlist only";
+    size_t refitted_probes = 0;
+    for (const auto& probe : refitted.probes) refitted_probes += probe.refitted;
+    EXPECT_EQ(refitted_probes, refitted_sizes.size());
+    EXPECT_EQ(refitted.probes.size(), plain.probes.size() + refitted_probes) << "the plain probes first, unchanged";
+    EXPECT_EQ(refitted.sh_share, 0.0) << "the stand-in re-fit made every band the best";
+    EXPECT_EQ(refitted.sh_degree, cloud.sh_degree);
+    EXPECT_EQ(refitted.drop, 0.0);
+    EXPECT_GT(plain.drop, 0.0) << "as they are, no candidate is the whole scene";
+    for (const auto& probe : refitted.probes)
+        if (probe.refitted) {
+            EXPECT_GE(probe.drop, refitted.drop);
+        }
+}
+
 TEST_F(SizeBudget, RefusesABudgetBelowTheSmallestModelNamingItsSize) {
     GaussianCloud one = cloud.subset(ranking.keep_best(1)).with_sh_degree(0);
     const size_t smallest = prune::scene_file_bytes(one, "spz");

@@ -64,8 +64,8 @@ void print_probe(const prune::BudgetProbe& probe) {
     if (probe.sh_precision != prune::ShPrecision{})
         std::printf(", SH bits %d,%d", probe.sh_precision.degree1_bits, probe.sh_precision.higher_bits);
     if (probe.bytes > 0) std::printf(", %.3f MB", double(probe.bytes) / 1e6);
-    std::printf(": PSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.psnr, probe.drop, probe.seconds,
-                probe.meets ? "within budget" : "over budget");
+    std::printf(": %sPSNR %.3f dB, drop %.3f dB, %.2f s  %s\n", probe.refitted ? "re-fitted (short) " : "", probe.psnr,
+                probe.drop, probe.seconds, probe.meets ? "within budget" : "over budget");
     std::fflush(stdout);  // one line per probe as it happens, also when stdout is a pipe
 }
 
@@ -151,11 +151,15 @@ int run_prune(const PruneArgs& args) {
     };
     std::unique_ptr<ProgressLine> refit;
     int refit_round = 0;
+    uint64_t refit_iteration = 0;
     progress.refit = [&](int round, const train::LoopStatus& status) {
-        if (round != refit_round || !refit) {
+        // Round 0: a size budget's shortlisted candidates, each re-fitted briefly in turn.
+        if (round != refit_round || !refit || status.iteration < refit_iteration) {
             refit_round = round;
-            refit = std::make_unique<ProgressLine>("re-fit round " + std::to_string(round) + ", iterations");
+            refit = std::make_unique<ProgressLine>(round == 0 ? std::string("short re-fit of a size candidate, iterations")
+                                                              : "re-fit round " + std::to_string(round) + ", iterations");
         }
+        refit_iteration = status.iteration;
         refit->update(status.iteration, status.iterations);
     };
     const jobs::PruneResult result = jobs::prune_scene(renderer, cloud, cameras, options, progress);

@@ -62,11 +62,12 @@ struct PruneOptions {
     std::optional<std::filesystem::path> load_scores;
     // Re-fit what is kept to the photos (needs images_dir or photos); see jobs/prune_recover.hpp.
     // With a QualityBudget each probe is re-fitted (one round) and the budget holds after
-    // re-fitting. With a SizeBudget the count chosen is reached in the rounds asked for from the
-    // scene at the chosen model's SH degree, the share of bands it dropped per Gaussian is dropped
-    // before the last round's re-fit and again after it (those the re-fitted model needs least),
-    // and if its file then outgrows the budget its least Gaussians go until it fits
-    // (prune::fit_refitted).
+    // re-fitting. With a SizeBudget its shortlisted candidates are measured after a short re-fit
+    // each (a tenth of the iterations; prune::SizeBudget::refit), the count chosen is reached in
+    // the rounds asked for from the scene at the chosen model's SH degree, the share of bands it
+    // dropped per Gaussian is dropped before the last round's re-fit and again after it (those the
+    // re-fitted model needs least), and if its file then outgrows the budget its least Gaussians
+    // go until it fits (prune::fit_refitted).
     std::optional<RecoverOptions> recover;
     std::filesystem::path out;        // the pruned scene, in the format its name says (io::write_scene)
     io::WriteMode mode = io::WriteMode::refuse_existing;
@@ -104,7 +105,9 @@ struct PruneResult {
 struct PruneProgress {
     prune::Progress scoring;                                  // training views rendered
     std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
-    std::function<void(int round, const train::LoopStatus&)> refit;  // re-fit progress (recover)
+    // Re-fit progress (recover): round 1, 2, ...; round 0 for the short re-fits of a size budget's
+    // shortlisted candidates (prune::SizeBudget::refit), one after another.
+    std::function<void(int round, const train::LoopStatus&)> refit;
 };
 
 // options.method, else the ranking measured best for the job: blend weight for a model used as

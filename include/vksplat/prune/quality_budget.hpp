@@ -43,6 +43,7 @@ struct BudgetProbe {
     double drop = 0;      // dB, as defined above
     double seconds = 0;   // wall time of the probe: subset, upload, renders, metrics
     bool meets = false;
+    bool refitted = false;  // measured after SizeBudget::refit (a shortlisted size candidate)
 };
 
 struct BudgetResult {
