@@ -210,6 +210,12 @@ int main(int argc, char** argv) {
             prune_options.mode = io::WriteMode::overwrite;
             jobs::PruneProgress progress;
             progress.refit = [&](int, const train::LoopStatus& s) { report(s); };
+            progress.probe = [](const prune::BudgetProbe& p) {
+                std::printf("probe: %zu Gaussians, SH %d, %.0f%% of the higher bands dropped, bits %d,%d, %zu bytes: "
+                            "%sdrop %.3f dB\n",
+                            p.kept, p.sh_degree, 100.0 * p.sh_share, p.sh_precision.degree1_bits,
+                            p.sh_precision.higher_bits, p.bytes, p.refitted ? "re-fitted (short) " : "", p.drop);
+            };
             const jobs::PruneResult pruned = jobs::prune_scene(renderer, cloud, cameras, prune_options, progress);
             const prune::BudgetResult& choice = *pruned.budget;
             std::printf("chosen: %zu Gaussians, SH degree %d, %.0f%% of the higher bands dropped per Gaussian, SH bits "
