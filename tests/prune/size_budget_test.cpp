@@ -205,35 +205,67 @@ TEST_F(SizeBudget, WithAReFitChoosesAmongTheShortlistAsReFitted) {
     budget.format = "spz";
     budget.sh_precision = std::nullopt;
     const prune::BudgetResult plain = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
-    // A stand-in re-fit that favours the model with every band (share 0): it gets the whole
-    // scene back, a drop of 0; every other candidate stays as it is.
-    std::vector<size_t> refitted_sizes;
+    // A stand-in re-fit that ruins every candidate with dropped bands (all but transparent) and
+    // leaves those with every band as they are.
+    size_t refits = 0;
     budget.refit = [&](const GaussianCloud& model) {
-        refitted_sizes.push_back(model.size());
-        GaussianCloud reduced = model;
-        bool every_band = model.sh_degree == cloud.sh_degree;
-        for (size_t i = 0; every_band && i < model.size(); ++i) {
+        ++refits;
+        if (model.sh_degree == cloud.sh_degree) {
             const size_t stride = size_t(model.sh_coefficients()) * 3;
-            every_band = model.sh[i * stride + stride - 1] != 0.0f;
+            bool every_band = true;
+            for (size_t i = 0; every_band && i < model.size(); ++i) every_band = model.sh[i * stride + stride - 1] != 0.0f;
+            if (every_band) return model;
         }
-        return every_band ? cloud : reduced;
+        GaussianCloud ruined = model;
+        for (float& logit : ruined.opacity_logits) logit = -10.0f;
+        return ruined;
     };
     const prune::BudgetResult refitted = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
     const size_t precisions = std::size(prune::kSizeBudgetPrecisions);
-    EXPECT_GE(refitted_sizes.size(), precisions);
-    EXPECT_LE(refitted_sizes.size(), 2 * precisions) << "the shortlist only";
+    EXPECT_GE(refits, precisions);
+    EXPECT_LE(refits, 2 * precisions) << "the shortlist only";
     size_t refitted_probes = 0;
     for (const auto& probe : refitted.probes) refitted_probes += probe.refitted;
-    EXPECT_EQ(refitted_probes, refitted_sizes.size());
-    EXPECT_EQ(refitted.probes.size(), plain.probes.size() + refitted_probes) << "the plain probes first, unchanged";
-    EXPECT_EQ(refitted.sh_share, 0.0) << "the stand-in re-fit made every band the best";
+    EXPECT_EQ(refitted_probes, refits);
+    EXPECT_EQ(refitted.probes.size(), plain.probes.size() + refitted_probes) << "the plain probes first";
+    EXPECT_EQ(refitted.sh_share, 0.0) << "the stand-in re-fit left every band the best";
     EXPECT_EQ(refitted.sh_degree, cloud.sh_degree);
-    EXPECT_EQ(refitted.drop, 0.0);
-    EXPECT_GT(plain.drop, 0.0) << "as they are, no candidate is the whole scene";
     for (const auto& probe : refitted.probes)
         if (probe.refitted) {
             EXPECT_GE(probe.drop, refitted.drop);
         }
+}
+
+// A re-fit that makes the file grow: the candidate keeps the count whose file, grown as much, fits.
+TEST_F(SizeBudget, AReFitThatGrowsTheFileKeepsTheCountThatStillFits) {
+    prune::SizeBudget budget;
+    budget.max_bytes = prune::scene_file_bytes(cloud, "spz") / 3;
+    budget.format = "spz";
+    const prune::BudgetResult plain = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
+    // Noise in every SH value and position, which SPZ then stores in more bytes.
+    budget.refit = [&](const GaussianCloud& model) {
+        GaussianCloud noisy = model;
+        for (size_t k = 0; k < noisy.sh.size(); ++k) noisy.sh[k] += 0.5f * float((k * 7919) % 13) / 13.0f;
+        for (size_t k = 0; k < noisy.positions.size(); ++k) noisy.positions[k] += 1e-3f * float((k * 104729) % 17);
+        return noisy;
+    };
+    const prune::BudgetResult refitted = prune::fit_size_budget(*renderer, cloud, ranking, {}, views, budget, {});
+    size_t fewer = 0, compared = 0;
+    for (const auto& probe : refitted.probes) {
+        if (!probe.refitted) continue;
+        EXPECT_LE(probe.bytes, budget.max_bytes);
+        for (const auto& before : plain.probes)
+            if (before.sh_share == probe.sh_share && before.sh_degree == probe.sh_degree &&
+                before.sh_precision == probe.sh_precision) {
+                EXPECT_LE(probe.kept, before.kept) << "share " << probe.sh_share;
+                if (probe.sh_share == 0) {  // the noise survives in every band: the file grew
+                    ++compared;
+                    fewer += probe.kept < before.kept;
+                }
+            }
+    }
+    EXPECT_GT(compared, 0u);
+    EXPECT_EQ(fewer, compared) << "where the file grew, the candidate keeps fewer";
 }
 
 TEST_F(SizeBudget, RefusesABudgetBelowTheSmallestModelNamingItsSize) {
