@@ -38,8 +38,7 @@ struct SizeBudget {
     // the higher bands dropped at 5,4 bits, re-fitted to -1.459 dB; 81% dropped with every band at
     // 6,6 bits to -0.255), so the candidates as they are rank the wrong way round. A re-fitted
     // candidate's file grows (its values compress less well): its count becomes the one whose file,
-    // grown as much, fits, and it is measured with the re-fitted model's best of that count.
-    // `refit` must return the model's Gaussians, re-fitted, in its order.
+    // grown as much, fits, so that the rounds re-fit what will be written.
     std::function<GaussianCloud(const GaussianCloud&)> refit;
 };
 
