@@ -106,6 +106,28 @@ TEST_F(PruneSizeBudget, ReachesTheChoiceInRoundsAndStillFits) {
     EXPECT_GE(dropped + gone * cloud.sh_degree, std::lround(chosen.sh_share * double(chosen.kept) * cloud.sh_degree));
 }
 
+// A long re-fit can grow the file past what its short re-fit foresaw: the Gaussians that then go
+// are made up for by one more short re-fit of what is left, after which the file is fitted again.
+TEST_F(PruneSizeBudget, GaussiansCutAfterTheReFitGetAShortReFitOfTheirOwn) {
+    const size_t whole = whole_spz_bytes();
+    jobs::PruneOptions o = options(whole / 2, "grown.spz");
+    o.images_dir = dir / "photos";
+    jobs::RecoverOptions recover;
+    recover.iterations = 40;
+    recover.rounds = 2;
+    recover.round_spacing = 10;
+    // A rate that throws the higher SH about: the re-fitted values fill far more bytes.
+    recover.finetune.train.rates.sh_rest *= 400;
+    o.recover = recover;
+    const jobs::PruneResult result = prune(o);
+    EXPECT_LE(fs::file_size(dir / "grown.spz"), whole / 2);
+    ASSERT_TRUE(result.budget);
+    ASSERT_EQ(result.recover_rounds.size(), 3u) << "two rounds and the short one after the cut";
+    EXPECT_LT(result.recover_rounds[2].kept, result.recover_rounds[1].kept) << "Gaussians were cut after the re-fit";
+    EXPECT_EQ(result.recover_rounds[2].iterations, 4u) << "a tenth of the re-fit's iterations";
+    EXPECT_LE(result.count_after, result.recover_rounds[2].kept);
+}
+
 TEST_F(PruneSizeBudget, RefusesBeforeScoringWhatNoModelFitsAndAnOutputThatExists) {
     const std::string tiny = refusal(options(20, "tiny.spz"));
     EXPECT_NE(tiny.find("no model fits in it: the smallest, one Gaussian at SH degree 0, takes"), std::string::npos)
