@@ -188,15 +188,16 @@ int main(int argc, char** argv) {
                 std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
                             static_cast<unsigned long long>(s.iteration), s.loss, s.psnr, s.seconds);
         };
+        // prune --recover's options as the flags set them (--drop and --max-mb).
+        jobs::RecoverOptions recover;
+        recover.iterations = iterations;
+        recover.seconds = seconds;
+        recover.rounds = rounds;
+        recover.round_spacing = round_spacing;
+        recover.sampled = sampled;
+        recover.method = prune::parse_score_method(method);
+        recover.finetune = options;
         if (max_mb) {
-            jobs::RecoverOptions recover;
-            recover.iterations = iterations;
-            recover.seconds = seconds;
-            recover.rounds = rounds;
-            recover.round_spacing = round_spacing;
-            recover.sampled = sampled;
-            recover.method = prune::parse_score_method(method);
-            recover.finetune = options;
             jobs::PruneOptions prune_options;
             prune_options.method = recover.method;
             prune::SizeBudget size{.max_bytes = static_cast<size_t>(std::llround(*max_mb * 1e6))};
@@ -223,7 +224,9 @@ int main(int argc, char** argv) {
                         choice.kept, choice.sh_degree, 100.0 * choice.sh_share, choice.sh_precision.degree1_bits,
                         choice.sh_precision.higher_bits, choice.drop);
             for (size_t r = 0; r < pruned.recover_rounds.size(); ++r)
-                std::printf("round %zu: %zu Gaussians, %llu iterations, %.1f s\n", r + 1, pruned.recover_rounds[r].kept,
+                std::printf("%s %zu: %zu Gaussians, %llu iterations, %.1f s\n",
+                            pruned.recover_rounds[r].after_fit ? "after the fit, round" : "round", r + 1,
+                            pruned.recover_rounds[r].kept,
                             static_cast<unsigned long long>(pruned.recover_rounds[r].iterations),
                             pruned.recover_rounds[r].seconds);
             std::printf("written: %zu Gaussians, %zu bytes (%s)\n", pruned.count_after, pruned.bytes_after,
@@ -243,24 +246,15 @@ int main(int argc, char** argv) {
                         result.after->mean_psnr - result.before->mean_psnr);
         } else {
             const auto train = jobs::default_train_views(cameras.size(), test);
-            const prune::ScoreMethod score_method = prune::parse_score_method(method);
             const auto scoring_start = std::chrono::steady_clock::now();
             const prune::ViewTotals totals = prune::accumulate(renderer, cloud, cameras, train, settings, {},
-                                                               prune::needs_fisher(score_method));
+                                                               prune::needs_fisher(recover.method));
             std::printf("scoring %zu views: %.1f s\n", train.size(),
                         std::chrono::duration<double>(std::chrono::steady_clock::now() - scoring_start).count());
-            const std::vector<float> scores = prune::score(cloud, totals, score_method);
+            const std::vector<float> scores = prune::score(cloud, totals, recover.method);
             const prune::KeepMask candidates = prune::lossless_mask(totals);
             const size_t keep = cloud.size() - static_cast<size_t>(std::llround(*drop * double(cloud.size())));
             const double unpruned = quality(cloud).mean_psnr;
-            jobs::RecoverOptions recover;
-            recover.iterations = iterations;
-            recover.seconds = seconds;
-            recover.rounds = rounds;
-            recover.round_spacing = round_spacing;
-            recover.sampled = sampled;
-            recover.method = score_method;
-            recover.finetune = options;
             const double pruned =
                 quality(cloud.subset(jobs::recover_ranking(scores, candidates, recover, 1).keep_best(keep))).mean_psnr;
             const uint64_t planned = jobs::recover_iterations(recover, cloud.size(), keep);

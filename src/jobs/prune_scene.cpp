@@ -206,7 +206,7 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
                                                   [&](const train::LoopStatus& s) {
                                                       if (progress.refit) progress.refit(round, s);
                                                   });
-    result.recover_rounds.push_back({fitted.size(), settled.iterations, settled.seconds});
+    result.recover_rounds.push_back({fitted.size(), settled.iterations, settled.seconds, true});
     return fit(settled.cloud);
 }
 

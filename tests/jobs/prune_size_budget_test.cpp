@@ -125,6 +125,8 @@ TEST_F(PruneSizeBudget, GaussiansCutAfterTheReFitGetAShortReFitOfTheirOwn) {
     ASSERT_EQ(result.recover_rounds.size(), 3u) << "two rounds and the short one after the cut";
     EXPECT_LT(result.recover_rounds[2].kept, result.recover_rounds[1].kept) << "Gaussians were cut after the re-fit";
     EXPECT_EQ(result.recover_rounds[2].iterations, 4u) << "a tenth of the re-fit's iterations";
+    EXPECT_TRUE(result.recover_rounds[2].after_fit);
+    EXPECT_FALSE(result.recover_rounds[1].after_fit);
     EXPECT_LE(result.count_after, result.recover_rounds[2].kept);
 }
 

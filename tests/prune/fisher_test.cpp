@@ -54,21 +54,8 @@ std::vector<FisherMatrix> fisher_by_differences(const GaussianCloud& cloud, cons
     return fisher;
 }
 
-std::vector<Camera> two_views() {
-    return {forward_camera(40, 32, 40.0),
-            Camera::look_at({0.8, -0.3, 0.2}, {0.0, 0.0, 3.5}, {0.0, -1.0, 0.0}, 36, 36, 38.0, 38.0)};
-}
-
 TEST(Fisher, MatchesFiniteDifferencesOfTheReferencePicture) {
-    // Overlapping splats of SH degree 1 (the colour moves with the view direction) over a coloured
-    // background, one opaque enough that its alpha is clamped at 0.99 near its centre, and one
-    // centred beyond the Jacobian's clamp at the right but large enough to reach into the picture.
-    const std::vector<Camera> cameras = two_views();
-    GaussianCloud cloud = random_scene(72, 10, 1, 2.5f, 5.0f, 0.08f, 0.5f, 1.2f);
-    add_splat(cloud, {.position = at_pixel(cameras[0], 15, 18, 2.4), .scale = {0.3, 0.2, 0.25}, .opacity = 0.9999});
-    add_splat(cloud, {.position = {2.6, 0.1, 2.5}, .scale = {0.9, 0.6, 0.5}, .opacity = 0.8});
-    RenderSettings settings;
-    settings.background = {0.2f, 0.4f, 0.9f};
+    const auto [cameras, cloud, settings] = fisher_scene();
 
     prune::FisherInformation information(cloud, settings);
     for (const Camera& camera : cameras) information.add_view(camera);

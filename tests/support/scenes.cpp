@@ -81,4 +81,16 @@ std::vector<Camera> row_of_five_views() {
     return cameras;
 }
 
+FisherScene fisher_scene() {
+    FisherScene scene;
+    scene.cameras = {forward_camera(40, 32, 40.0),
+                     Camera::look_at({0.8, -0.3, 0.2}, {0.0, 0.0, 3.5}, {0.0, -1.0, 0.0}, 36, 36, 38.0, 38.0)};
+    scene.cloud = random_scene(72, 10, 1, 2.5f, 5.0f, 0.08f, 0.5f, 1.2f);
+    add_splat(scene.cloud,
+              {.position = at_pixel(scene.cameras[0], 15, 18, 2.4), .scale = {0.3, 0.2, 0.25}, .opacity = 0.9999});
+    add_splat(scene.cloud, {.position = {2.6, 0.1, 2.5}, .scale = {0.9, 0.6, 0.5}, .opacity = 0.8});
+    scene.settings.background = {0.2f, 0.4f, 0.9f};
+    return scene;
+}
+
 }  // namespace vksplat::test

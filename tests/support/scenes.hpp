@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "vksplat/camera/camera.hpp"
+#include "vksplat/render_types.hpp"
 #include "vksplat/scene/scene.hpp"
 
 namespace vksplat::test {
@@ -38,6 +39,17 @@ glm::dvec3 at_pixel(const Camera& camera, double u, double v, double z);
 // random SH of the given degree. Deterministic for a seed.
 GaussianCloud random_scene(uint32_t seed, size_t n, int sh_degree, float z_near = 2.0f, float z_far = 8.0f,
                            float scale_min = 0.01f, float scale_max = 0.3f, float half_width = 2.5f);
+
+// What the Fisher tests differentiate: two overlapping views and, over a coloured background
+// (`settings`), overlapping splats of SH degree 1 (the colour moves with the view direction), one
+// opaque enough that its alpha is clamped at 0.99 near its centre and one centred beyond the
+// Jacobian's clamp at the right but large enough to reach into the picture.
+struct FisherScene {
+    std::vector<Camera> cameras;
+    GaussianCloud cloud;
+    RenderSettings settings;
+};
+FisherScene fisher_scene();
 
 // Five 48x40 views ("view_0" .. "view_4") on a row in front of the origin, all looking at
 // (0, 0, 5): the small multi-view set of the pruning and sweep tests.

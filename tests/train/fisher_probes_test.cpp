@@ -20,11 +20,6 @@ using prune::FisherMatrix;
 
 class FisherProbes : public GpuTest {};
 
-std::vector<Camera> two_views() {
-    return {forward_camera(40, 32, 40.0),
-            Camera::look_at({0.8, -0.3, 0.2}, {0.0, 0.0, 3.5}, {0.0, -1.0, 0.0}, 36, 36, 38.0, 38.0)};
-}
-
 std::vector<FisherMatrix> exact_fisher(const GaussianCloud& cloud, const std::vector<Camera>& cameras,
                                        const RenderSettings& settings) {
     prune::FisherInformation information(cloud, settings);
@@ -51,14 +46,8 @@ double spearman(const std::vector<double>& a, const std::vector<double>& b) {
 }
 
 TEST_F(FisherProbes, ManyProbesConvergeToTheExactFisherInformation) {
-    // The Fisher test's scene: SH degree 1 over a coloured background, one splat clamped at alpha
-    // 0.99 near its centre and one centred beyond the Jacobian's clamp.
-    const std::vector<Camera> cameras = two_views();
-    GaussianCloud cloud = random_scene(72, 10, 1, 2.5f, 5.0f, 0.08f, 0.5f, 1.2f);
-    add_splat(cloud, {.position = at_pixel(cameras[0], 15, 18, 2.4), .scale = {0.3, 0.2, 0.25}, .opacity = 0.9999});
-    add_splat(cloud, {.position = {2.6, 0.1, 2.5}, .scale = {0.9, 0.6, 0.5}, .opacity = 0.8});
-    RenderSettings settings;
-    settings.background = {0.2f, 0.4f, 0.9f};
+    // The exact Fisher test's scene: a splat clamped at alpha 0.99 and one beyond the Jacobian's clamp.
+    const auto [cameras, cloud, settings] = fisher_scene();
 
     // Each probe's G G^T has mean F and, per entry, a spread of about sqrt(F_rr F_cc + F_rc^2) for
     // one view: 2,048 probes a view bring it to ~2.2% of the diagonal's scale over the two views,

@@ -84,10 +84,15 @@ void print_result(const jobs::PruneResult& result, const std::string& out) {
     if (result.budget && !result.budget->met)
         std::printf("warning: even all that the lossless pass left misses the budget (drop %.3f dB); kept that\n",
                     result.budget->drop);
-    for (size_t r = 0; r < result.recover_rounds.size(); ++r)
-        std::printf("round %zu: pruned to %zu Gaussians and re-fitted, %llu iterations in %.1f s\n", r + 1,
-                    result.recover_rounds[r].kept, static_cast<unsigned long long>(result.recover_rounds[r].iterations),
-                    result.recover_rounds[r].seconds);
+    for (size_t r = 0; r < result.recover_rounds.size(); ++r) {
+        const auto& round = result.recover_rounds[r];
+        if (round.after_fit)
+            std::printf("after the fit: %zu Gaussians left, re-fitted %llu iterations in %.1f s\n", round.kept,
+                        static_cast<unsigned long long>(round.iterations), round.seconds);
+        else
+            std::printf("round %zu: pruned to %zu Gaussians and re-fitted, %llu iterations in %.1f s\n", r + 1,
+                        round.kept, static_cast<unsigned long long>(round.iterations), round.seconds);
+    }
     const size_t views = result.test_views.size();
     if (result.before)
         std::printf("test views (%zu) against the photos: PSNR %.3f -> %.3f dB, SSIM %.4f -> %.4f\n", views,

@@ -93,11 +93,14 @@ struct PruneResult {
     std::optional<prune::BudgetResult> budget;  // with a Quality- or SizeBudget selector: every probe
     // With recover and no quality budget, each round: the Gaussians it kept, and its re-fit's
     // iterations and wall time (the iterations a time budget or the fraction dropped chose are told
-    // no other way). A size budget's last round kept the count chosen, before the file was fitted.
+    // no other way). A size budget's last round kept the count chosen, before the file was fitted;
+    // where the fit then cut Gaussians, one more entry, `after_fit`, is the short re-fit of what
+    // was left.
     struct RecoverRoundReport {
         size_t kept = 0;
         uint64_t iterations = 0;
         double seconds = 0;
+        bool after_fit = false;
     };
     std::vector<RecoverRoundReport> recover_rounds;
 };
