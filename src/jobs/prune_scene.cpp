@@ -159,6 +159,15 @@ void report_rounds(PruneResult& result, const RecoverResult& recovered) {
         result.recover_rounds.push_back({round.kept, round.refit.iterations, round.refit.seconds});
 }
 
+// A size budget's short re-fit (of its shortlisted candidates, and of what its fit cut): one round
+// of a tenth of the iterations a re-fit from n Gaussians to `kept` takes, at least one.
+FinetuneOptions short_refit(const RecoverOptions& recover, size_t n, size_t kept) {
+    FinetuneOptions shortened = single_refit(recover, n, kept);
+    shortened.seconds.reset();
+    shortened.iterations = std::max<uint64_t>(1, recover_iterations(recover, n, kept) / 10);
+    return shortened;
+}
+
 // The size budget's choice (result.budget) re-fitted: its count reached in the rounds asked for
 // from the cloud at the chosen model's degree, its share of bands per Gaussian dropped before the
 // last round's re-fit (RecoverOptions::before_last_refit), then dropped again by the re-fitted
@@ -198,9 +207,7 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
     // 86,891 Gaussians re-fitted, 80,715 fitted, -0.500 dB): what is left gets a short re-fit of
     // its own (a tenth of the iterations, as the candidates had) to make up for those that went,
     // and the file is fitted again.
-    FinetuneOptions settle = single_refit(recover, cloud.size(), fitted.size());
-    settle.seconds.reset();
-    settle.iterations = std::max<uint64_t>(1, recover_iterations(recover, cloud.size(), choice.kept) / 10);
+    const FinetuneOptions settle = short_refit(recover, cloud.size(), choice.kept);
     const int round = int(result.recover_rounds.size()) + 1;
     const FinetuneResult settled = finetune_scene(renderer.context(), fitted, cameras, photos, settle, {},
                                                   [&](const train::LoopStatus& s) {
@@ -238,10 +245,7 @@ GaussianCloud recover(PruneResult& result, Renderer& renderer, const GaussianClo
         // The shortlist's re-fits: one round of a tenth of the re-fit's iterations each (at least
         // one), enough to tell which candidates a re-fit favours, at a fraction of its cost.
         size->refit = [&](const GaussianCloud& model) {
-            FinetuneOptions shortened = single_refit(recover, cloud.size(), model.size());
-            shortened.seconds.reset();
-            shortened.iterations = std::max<uint64_t>(1, recover_iterations(recover, cloud.size(), model.size()) / 10);
-            return finetune_scene(context, model, cameras, photos, shortened, {},
+            return finetune_scene(context, model, cameras, photos, short_refit(recover, cloud.size(), model.size()), {},
                                   [&](const train::LoopStatus& s) {
                                       if (progress.refit) progress.refit(0, s);
                                   })
