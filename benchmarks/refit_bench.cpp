@@ -83,6 +83,8 @@ int main(int argc, char** argv) {
             if (text.find('=') == std::string::npos) throw CLI::ValidationError("--lr", "wants GROUP=F");
         });
     app.add_option("--device", device);
+    double ssim_weight = jobs::FinetuneOptions().train.ssim_weight;
+    app.add_option("--ssim-weight", ssim_weight, "the loss's lambda: (1 - lambda) L1 + lambda (1 - SSIM); the reference's 0.2");
     uint64_t seed = 0;
     app.add_option("--seed", seed, "the order of the training views and the rounds' samples (FinetuneOptions::seed)");
     auto* drop_option = app.add_option("--drop", drop, "prune this fraction first, ranked by --method (then re-fit)");
@@ -145,6 +147,7 @@ int main(int argc, char** argv) {
             std::printf("learning rate %s x %g\n", group.c_str(), factor);
         }
         options.train.background = {background[0], background[1], background[2]};
+        options.train.ssim_weight = ssim_weight;
         if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
         const auto test = jobs::default_test_views(cameras);
 
@@ -283,6 +286,19 @@ int main(int argc, char** argv) {
                         result.after->mean_psnr - unpruned);
         }
         print_file_bytes("re-fitted file", result.cloud);
+        // SSIM beside PSNR: a loss weighted otherwise (--ssim-weight) trades one against the other.
+        if (subject.empty()) {
+            const auto mean_ssim = [&](const GaussianCloud& scene) {
+                renderer.set_scene(scene);
+                double sum = 0;
+                for (const auto& [v, photo] : test_photos) {
+                    const RenderOutput out = renderer.render(cameras[v], settings);
+                    sum += eval::ssim(out.rgb.data(), photo.rgb.data(), out.width, out.height);
+                }
+                return sum / double(test_photos.size());
+            };
+            std::printf("test SSIM: unpruned %.4f, re-fitted %.4f\n", mean_ssim(cloud), mean_ssim(result.cloud));
+        }
         if (!sh_bits.empty()) {
             const prune::ShPrecision precision{sh_bits[0], sh_bits[1]};
             const GaussianCloud rounded = prune::with_sh_precision(result.cloud, precision);
