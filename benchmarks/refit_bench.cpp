@@ -69,7 +69,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> rate_factors;
     const jobs::RecoverOptions recover_defaults;
     std::optional<int> rounds;  // unset: jobs::recover_rounds's
-    std::string position_lr = "final";
+    std::string position_lr;  // unset: what the job measured runs (finetune: final; --drop, --max-mb: decay)
     app.add_option("scene", scene_path)->required();
     app.add_option("--cameras", cameras_path)->required();
     app.add_option("--photos", photos_dir, "folder of <image name>.npy, uint8 [H, W, 3]")->required();
@@ -103,7 +103,9 @@ int main(int argc, char** argv) {
     bool sampled = recover_defaults.sampled;
     app.add_option("--sample", sampled,
                    "true: keep a weighted random sample by score in every round, not the best-scored");
-    app.add_option("--position-lr", position_lr, "final: the reference's final rate throughout; decay: initial to final")
+    app.add_option("--position-lr", position_lr,
+                   "final: the reference's final rate throughout; decay: initial to final (default: final for a\n"
+                   "plain re-fit, as finetune; decay with --drop and --max-mb, as prune --recover)")
         ->check(CLI::IsMember({"final", "decay"}));
     app.add_option("--sh-degree", sh_degree, "reduce the whole cloud to this SH degree before pruning and re-fitting")
         ->check(CLI::Range(0, 3));
@@ -117,6 +119,9 @@ int main(int argc, char** argv) {
     app.add_flag("--whole-picture-loss", whole_loss, "with --subject: measure inside the region, but let the loss see every pixel");
     app.add_option("--save", save, "write the re-fitted scene here (.ply)");
     CLI11_PARSE(app, argc, argv);
+    // Line by line, so that a run stopped at a time limit leaves what it had printed.
+    std::setvbuf(stdout, nullptr, _IOLBF, 0);
+    if (position_lr.empty()) position_lr = drop || max_mb ? "decay" : "final";
     try {
         const GaussianCloud whole = io::read_scene(scene_path);
         GaussianCloud cloud = whole;
