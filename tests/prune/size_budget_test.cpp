@@ -3,9 +3,11 @@
 
 #include <cmath>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <set>
 #include <stdexcept>
+#include <vector>
 
 #include "support/gpu_fixture.hpp"
 #include "support/scenes.hpp"
@@ -22,19 +24,54 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(LargestFitting, FindsTheLastCountThatFitsByBisection) {
+TEST(LargestFitting, FindsTheLastCountThatFitsInAFewCallsWhereBytesGrowAsALine) {
     size_t calls = 0;
     const auto bytes_of = [&](size_t count) {
         ++calls;
         return 100 + 10 * count;
     };
     EXPECT_EQ(prune::largest_fitting(1000, 595, bytes_of), 49u);
-    EXPECT_LE(double(calls), 2 + std::ceil(std::log2(1000.0)));
+    EXPECT_LE(calls, 6u) << "bisection took 12";
     EXPECT_EQ(prune::largest_fitting(1000, 600, bytes_of), 50u);
     EXPECT_EQ(prune::largest_fitting(1000, 109, bytes_of), 0u) << "not even one";
     EXPECT_EQ(prune::largest_fitting(1000, 110, bytes_of), 1u);
     EXPECT_EQ(prune::largest_fitting(1000, 100000, bytes_of), 1000u);
     EXPECT_EQ(prune::largest_fitting(0, 100000, bytes_of), 0u);
+    // A compressed file: a line with a wobble of a few bytes that never falls.
+    calls = 0;
+    const auto wobbly = [&](size_t count) {
+        ++calls;
+        return 5000 + 37 * count + (count * 7919 % 13);
+    };
+    EXPECT_EQ(prune::largest_fitting(400000, 3000000, wobbly), 80945u);
+    EXPECT_LE(calls, 8u);
+}
+
+TEST(LargestFitting, IsExactAndNeverMuchSlowerThanBisectionWhereBytesAreFarFromALine) {
+    // Steps, plateaus, jumps and curves that never fall, against the last count that fits by a walk.
+    const std::vector<std::function<size_t(size_t)>> shapes = {
+        [](size_t c) { return c * c; },
+        [](size_t c) { return size_t(1000 * std::sqrt(double(c))); },
+        [](size_t c) { return c < 3000 ? c : 1000000 + c; },
+        [](size_t c) { return 100 * (c / 250); },
+        [](size_t c) { return size_t(std::exp(double(c) / 400.0)); },
+    };
+    constexpr size_t kMost = 4000;
+    for (size_t s = 0; s < shapes.size(); ++s) {
+        const auto& bytes_of = shapes[s];
+        for (size_t max_bytes : {size_t(1), size_t(7), size_t(500), size_t(12345), size_t(999999), size_t(4000000)}) {
+            size_t expected = 0;
+            while (expected < kMost && bytes_of(expected + 1) <= max_bytes) ++expected;
+            size_t calls = 0;
+            const size_t found = prune::largest_fitting(kMost, max_bytes, [&](size_t c) {
+                ++calls;
+                EXPECT_TRUE(c >= 1 && c <= kMost) << c;
+                return bytes_of(c);
+            });
+            EXPECT_EQ(found, expected) << "shape " << s << ", " << max_bytes << " bytes";
+            EXPECT_LE(calls, 3 * 12 + 2u) << "shape " << s << ", " << max_bytes << " bytes";
+        }
+    }
 }
 
 TEST(SceneFileBytes, AreTheBytesTheWriterWrites) {
