@@ -208,10 +208,9 @@ GaussianCloud refit_size_choice(PruneResult& result, Renderer& renderer, const G
     // its own (a tenth of the iterations, as the candidates had) to make up for those that went,
     // and the file is fitted again.
     const FinetuneOptions settle = short_refit(recover, cloud.size(), choice.kept);
-    const int round = int(result.recover_rounds.size()) + 1;
     const FinetuneResult settled = finetune_scene(renderer.context(), fitted, cameras, photos, settle, {},
                                                   [&](const train::LoopStatus& s) {
-                                                      if (progress.refit) progress.refit(round, s);
+                                                      if (progress.refit) progress.refit(kRefitAfterFit, s);
                                                   });
     result.recover_rounds.push_back({fitted.size(), settled.iterations, settled.seconds, true});
     return fit(settled.cloud);

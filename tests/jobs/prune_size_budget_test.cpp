@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <set>
 #include <string>
 
 #include "support/photos.hpp"
@@ -35,6 +36,8 @@ protected:
         scored = false;
         jobs::PruneProgress progress;
         progress.scoring = [this](size_t, size_t) { scored = true; };
+        refit_rounds.clear();
+        progress.refit = [this](int round, const train::LoopStatus&) { refit_rounds.insert(round); };
         return jobs::prune_scene(*renderer, cloud, cameras, o, progress);
     }
     std::string refusal(const jobs::PruneOptions& o) {
@@ -51,6 +54,7 @@ protected:
         return fs::file_size(dir / "whole.spz");
     }
     bool scored = false;
+    std::set<int> refit_rounds;  // the rounds progress.refit reported
 };
 
 TEST_F(PruneSizeBudget, WritesAFileThatFitsAndKeepsMoreForMore) {
@@ -128,6 +132,8 @@ TEST_F(PruneSizeBudget, GaussiansCutAfterTheReFitGetAShortReFitOfTheirOwn) {
     EXPECT_TRUE(result.recover_rounds[2].after_fit);
     EXPECT_FALSE(result.recover_rounds[1].after_fit);
     EXPECT_LE(result.count_after, result.recover_rounds[2].kept);
+    // Progress names each re-fit: the shortlist's (0), the rounds' and the one after the fit.
+    EXPECT_EQ(refit_rounds, (std::set<int>{jobs::kRefitAfterFit, 0, 1, 2}));
 }
 
 TEST_F(PruneSizeBudget, RefusesBeforeScoringWhatNoModelFitsAndAnOutputThatExists) {

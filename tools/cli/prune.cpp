@@ -161,8 +161,10 @@ int run_prune(const PruneArgs& args) {
         // Round 0: a size budget's shortlisted candidates, each re-fitted briefly in turn.
         if (round != refit_round || !refit || status.iteration < refit_iteration) {
             refit_round = round;
-            refit = std::make_unique<ProgressLine>(round == 0 ? std::string("short re-fit of a size candidate, iterations")
-                                                              : "re-fit round " + std::to_string(round) + ", iterations");
+            refit = std::make_unique<ProgressLine>(
+                round == 0                        ? std::string("short re-fit of a size candidate, iterations")
+                : round == jobs::kRefitAfterFit ? std::string("short re-fit of what the fit left, iterations")
+                                                  : "re-fit round " + std::to_string(round) + ", iterations");
         }
         refit_iteration = status.iteration;
         refit->update(status.iteration, status.iterations);

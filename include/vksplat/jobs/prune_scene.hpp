@@ -109,9 +109,11 @@ struct PruneProgress {
     prune::Progress scoring;                                  // training views rendered
     std::function<void(const prune::BudgetProbe&)> probe;    // each quality-budget probe
     // Re-fit progress (recover): round 1, 2, ...; round 0 for the short re-fits of a size budget's
-    // shortlisted candidates (prune::SizeBudget::refit), one after another.
+    // shortlisted candidates (prune::SizeBudget::refit), one after another; kRefitAfterFit for the
+    // short re-fit of what a size budget's fit left after the rounds.
     std::function<void(int round, const train::LoopStatus&)> refit;
 };
+inline constexpr int kRefitAfterFit = -1;
 
 // options.method, else the ranking measured best for the job: blend weight for a model used as
 // pruned, blend-mix with `recover` (RecoverOptions::method says why).
