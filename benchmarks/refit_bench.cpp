@@ -31,6 +31,7 @@
 #include <string>
 
 #include "vksplat/eval/metrics.hpp"
+#include "vksplat/eval/quality.hpp"
 #include "vksplat/eval/subject_region.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -298,17 +299,17 @@ int main(int argc, char** argv) {
         }
         print_file_bytes("re-fitted file", result.cloud);
         // SSIM beside PSNR: a loss weighted otherwise (--ssim-weight) trades one against the other.
+        // Measured as prune measures its output (eval::measure_quality against the photos).
         if (subject.empty()) {
-            const auto mean_ssim = [&](const GaussianCloud& scene) {
-                renderer.set_scene(scene);
-                double sum = 0;
-                for (const auto& [v, photo] : test_photos) {
-                    const RenderOutput out = renderer.render(cameras[v], settings);
-                    sum += eval::ssim(out.rgb.data(), photo.rgb.data(), out.width, out.height);
-                }
-                return sum / double(test_photos.size());
-            };
-            std::printf("test SSIM: unpruned %.4f, re-fitted %.4f\n", mean_ssim(cloud), mean_ssim(result.cloud));
+            eval::TestViews views;
+            views.photos = true;
+            for (const auto& [v, photo] : test_photos) {
+                views.cameras.push_back(cameras[v]);
+                views.targets.push_back(photo.rgb);
+            }
+            std::printf("test SSIM: unpruned %.4f, re-fitted %.4f\n",
+                        eval::measure_quality(renderer, cloud, views, settings, true).mean_ssim,
+                        eval::measure_quality(renderer, result.cloud, views, settings, true).mean_ssim);
         }
         if (!sh_bits.empty()) {
             const prune::ShPrecision precision{sh_bits[0], sh_bits[1]};
