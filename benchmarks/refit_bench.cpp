@@ -104,10 +104,6 @@ int main(int argc, char** argv) {
     bool sampled = recover_defaults.sampled;
     app.add_option("--sample", sampled,
                    "true: keep a weighted random sample by score in every round, not the best-scored");
-    double regrow_peak = recover_defaults.regrow_peak, regrow_share = recover_defaults.regrow_share;
-    app.add_option("--regrow-peak", regrow_peak,
-                   "the last round grows its model to this many times its count, then settles back (1: none)");
-    app.add_option("--regrow-share", regrow_share, "the share of the last round's steps it grows over");
     app.add_option("--position-lr", position_lr,
                    "final: the reference's final rate throughout; decay: initial to final (default: final for a\n"
                    "plain re-fit, as finetune; decay with --drop and --max-mb, as prune --recover)")
@@ -198,8 +194,8 @@ int main(int argc, char** argv) {
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
         const auto report = [](const train::LoopStatus& s) {
             if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
-                std::printf("  iteration %llu: %zu Gaussians, loss %.4f, train PSNR %.2f dB, %.1f s\n",
-                            static_cast<unsigned long long>(s.iteration), s.gaussians, s.loss, s.psnr, s.seconds);
+                std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
+                            static_cast<unsigned long long>(s.iteration), s.loss, s.psnr, s.seconds);
         };
         // prune --recover's options as the flags set them (--drop and --max-mb).
         jobs::RecoverOptions recover;
@@ -208,8 +204,6 @@ int main(int argc, char** argv) {
         recover.rounds = rounds;
         recover.round_spacing = round_spacing;
         recover.sampled = sampled;
-        recover.regrow_peak = regrow_peak;
-        recover.regrow_share = regrow_share;
         recover.method = prune::parse_score_method(method);
         recover.finetune = options;
         if (max_mb) {
@@ -299,7 +293,6 @@ int main(int argc, char** argv) {
                             recovered.rounds[r].refit.seconds);
             result = recovered.rounds.back().refit;
             result.cloud = recovered.cloud;  // the round's own was moved into the next (prune_and_recover)
-            std::printf("re-fitted model: %zu Gaussians\n", result.cloud.size());
             std::printf("test PSNR (%zu views): unpruned %.3f, %.0f%% dropped %.3f (%+.3f), re-fitted %.3f (%+.3f)\n",
                         test.size(), unpruned, 100.0 * *drop, pruned, pruned - unpruned, result.after->mean_psnr,
                         result.after->mean_psnr - unpruned);

@@ -95,16 +95,14 @@ StepTime time_steps(const gpu::Context& context, const GaussianCloud& cloud, con
     return time;
 }
 
-// The re-fit's strategy (FinetuneOptions::strategy) that also stops the loop at a deadline,
-// passing the caller's stop (Ctrl-C) on: the loop takes one strategy and one stop flag.
+// The re-fit's strategy (train::RefitStrategy: nothing around the steps) that also stops the loop
+// at a deadline, passing the caller's stop (Ctrl-C) on: the loop takes one stop flag.
 class DeadlineStrategy final : public train::Strategy {
 public:
-    DeadlineStrategy(std::unique_ptr<train::Strategy> inner, Clock::time_point deadline,
-                     const std::atomic<bool>* user_stop)
-        : inner_(std::move(inner)), deadline_(deadline), user_stop_(user_stop) {}
-    void before_step(train::Trainer& trainer, uint64_t iteration) override { inner_->before_step(trainer, iteration); }
-    void after_step(train::Trainer& trainer, uint64_t iteration) override {
-        inner_->after_step(trainer, iteration);
+    DeadlineStrategy(Clock::time_point deadline, const std::atomic<bool>* user_stop)
+        : deadline_(deadline), user_stop_(user_stop) {}
+    void before_step(train::Trainer&, uint64_t) override {}
+    void after_step(train::Trainer&, uint64_t) override {
         if (user_stop_ && user_stop_->load()) stop_ = true;
         if (Clock::now() >= deadline_) out_of_time_ = stop_ = true;
     }
@@ -113,7 +111,6 @@ public:
     bool out_of_time() const { return out_of_time_ && !(user_stop_ && user_stop_->load()); }
 
 private:
-    std::unique_ptr<train::Strategy> inner_;
     Clock::time_point deadline_;
     const std::atomic<bool>* user_stop_;
     std::atomic<bool> stop_{false};
@@ -190,8 +187,7 @@ FinetuneResult finetune_scene(const gpu::Context& context, const GaussianCloud& 
 
     // Without a budget the deadline lies beyond any run (as does one of more than 30 years).
     const auto budget = std::chrono::duration<double>(std::min(options.seconds.value_or(1e9), 1e9));
-    DeadlineStrategy strategy(options.strategy ? options.strategy(iterations) : std::make_unique<train::RefitStrategy>(),
-                              options.seconds ? start + std::chrono::duration_cast<Clock::duration>(budget)
+    DeadlineStrategy strategy(options.seconds ? start + std::chrono::duration_cast<Clock::duration>(budget)
                                               : Clock::time_point::max(),
                               options.stop);
     // With a time budget the planned count sets only the position rate's decay: the steps timed

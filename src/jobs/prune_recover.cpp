@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 
-#include "jobs/scene_importance.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/prune/accumulate.hpp"
@@ -100,28 +99,6 @@ void check_recover(const RecoverOptions& options, const std::vector<Camera>& cam
         checked_photo(photos, cameras[view]);
 }
 
-std::optional<RegrowthSchedule> regrowth_schedule(const RecoverOptions& options, size_t count, uint64_t iterations) {
-    if (!(options.regrow_peak > 1) || count == 0) return std::nullopt;
-    RegrowthSchedule s;
-    // A re-fit evaluates every band from its first step and keeps its Gaussians' opacities: no
-    // band schedule, no opacity resets (and so none of the reference's pruning of the oversized).
-    s.reference.sh_degree = options.finetune.train.sh_degree;
-    s.reference.sh_degree_interval = 0;
-    s.reference.opacity_reset_interval = 0;
-    s.reference.densify_until = uint64_t(std::llround(options.regrow_share * double(iterations)));
-    train::BudgetSchedule& b = s.budget;
-    b.budget = b.start = count;
-    b.peak = options.regrow_peak;
-    b.settle_at = s.reference.densify_until;
-    b.iterations = iterations;
-    // The window holds a few densifications and ends before the round does (BudgetStrategy brings
-    // its settlings closer together where they would not fit after it).
-    if (s.reference.densify_until < s.reference.densify_from + 5 * s.reference.densify_interval ||
-        s.reference.densify_until >= iterations)
-        return std::nullopt;
-    return s;
-}
-
 prune::Ranking recover_ranking(std::span<const float> scores, std::span<const uint8_t> candidates,
                                const RecoverOptions& options, int round) {
     if (!options.sampled) return prune::Ranking(scores, candidates);
@@ -164,16 +141,6 @@ RecoverResult prune_and_recover(const gpu::Context& context, Renderer& renderer,
         } else {
             finetune.seconds.reset();
             finetune.iterations = round_iterations(iterations, round, rounds, options.round_spacing);
-        }
-        finetune.strategy = {};
-        if (last && !options.seconds) {
-            if (const auto regrowth = regrowth_schedule(options, model.size(), finetune.iterations)) {
-                finetune.strategy = [regrowth = *regrowth,
-                                     importance = importance_over(context, cameras, train, settings, options.method,
-                                                                  finetune.seed, options.sampled)](uint64_t) {
-                    return std::make_unique<train::BudgetStrategy>(regrowth.reference, regrowth.budget, importance);
-                };
-            }
         }
         done.refit = finetune_scene(context, model, cameras, photos, finetune, last ? quality : QualityProbe{},
                                     [&](const train::LoopStatus& s) {

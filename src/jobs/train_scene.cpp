@@ -13,7 +13,6 @@
 #include "jobs/fingerprint.hpp"
 #include "vksplat/io/output_folders.hpp"
 #include "jobs/run_checkpoint.hpp"
-#include "jobs/scene_importance.hpp"
 #include "jobs/training_report.hpp"
 #include "jobs/training_setup.hpp"
 #include "vksplat/camera/camera_focus.hpp"
@@ -24,7 +23,9 @@
 #include "vksplat/jobs/view_selection.hpp"
 #include "vksplat/train/initialize.hpp"
 #include "stats/median.hpp"
+#include "vksplat/prune/accumulate.hpp"
 #include "vksplat/prune/scores.hpp"
+#include "vksplat/prune/selection.hpp"
 
 namespace vksplat::jobs {
 namespace {
@@ -80,6 +81,25 @@ GaussianCloud random_subset(const GaussianCloud& cloud, size_t count, uint64_t s
     std::vector<uint8_t> keep(cloud.size(), 0);
     for (size_t k = 0; k < count; ++k) keep[order[k]] = 1;
     return cloud.subset(keep);
+}
+
+// The budget recipe's importance: a prune module score (recipe.budget_score) over the training
+// views, rendered on the trainer's current Gaussians.
+train::Importance importance_over(const gpu::Context& context, const TrainingData& data, const TrainOptions& options) {
+    RenderSettings settings;
+    settings.background = options.background;
+    // A renderer of its own each time, so that its device memory is held only while it scores.
+    const bool sampling = options.recipe.budget_sampling;
+    const prune::ScoreMethod method = options.recipe.budget_score;
+    return [&context, settings, &data, sampling, method, seed = options.seed](const GaussianCloud& cloud) {
+        Renderer renderer(context);
+        const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings,
+                                                           {}, prune::needs_fisher(method));
+        std::vector<float> scores = prune::score(cloud, totals, method, seed);
+        // Seeded by the count too, which differs between rounds and is the same in a resumed run.
+        return sampling ? prune::sampling_keys(prune::sampling_weights(scores, method), seed ^ (uint64_t(cloud.size()) << 20))
+                        : scores;
+    };
 }
 
 // Median GPU time of each pass of a step, in recording order.
@@ -297,10 +317,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         budget.iterations = recipe.iterations;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
-        strategy = std::make_unique<train::BudgetStrategy>(
-            schedule, budget,
-            importance_over(context, data.cameras, data.train_views, RenderSettings{.background = options.background},
-                            options.recipe.budget_score, options.seed, options.recipe.budget_sampling));
+        strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
         budget_strategy = static_cast<train::BudgetStrategy*>(strategy.get());
     }
 

@@ -10,7 +10,7 @@
 namespace vksplat::train {
 
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration) {
-    if (budget.budget < budget.start) return budget.budget;
+    if (budget.budget <= budget.start) return budget.budget;
     const size_t peak = size_t(std::llround(double(budget.budget) * std::max(1.0, budget.peak)));
     const double from = double(reference.densify_from);
     const double span = budget.reach * (double(reference.densify_until) - from);

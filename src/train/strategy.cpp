@@ -6,15 +6,11 @@ namespace vksplat::train {
 
 ScheduledStep scheduled_step(const ReferenceSchedule& s, uint64_t iteration) {
     ScheduledStep step;
-    step.sh_degree = s.sh_degree_interval == 0
-                         ? s.sh_degree
-                         : int(std::min<uint64_t>(uint64_t(s.sh_degree), iteration / s.sh_degree_interval));
+    step.sh_degree = int(std::min<uint64_t>(uint64_t(s.sh_degree), iteration / s.sh_degree_interval));
     if (iteration >= s.densify_until) return step;
     step.densify = iteration > s.densify_from && iteration % s.densify_interval == 0;
-    const bool resets = s.opacity_reset_interval > 0;
-    step.prune_large = step.densify && resets && iteration > s.opacity_reset_interval;
-    step.reset_opacity =
-        (resets && iteration % s.opacity_reset_interval == 0) || (s.white_background && iteration == s.densify_from);
+    step.prune_large = step.densify && iteration > s.opacity_reset_interval;
+    step.reset_opacity = iteration % s.opacity_reset_interval == 0 || (s.white_background && iteration == s.densify_from);
     return step;
 }
 

@@ -19,7 +19,6 @@
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/jobs/prune_recover.hpp"
 #include "vksplat/prune/accumulate.hpp"
-#include "vksplat/train/budget_strategy.hpp"
 
 namespace vksplat::test {
 namespace {
@@ -73,36 +72,6 @@ TEST(PlannedIterations, FillTheBudgetAtTheTimedStep) {
     EXPECT_EQ(jobs::planned_iterations(0.01, 3), 1u);  // a re-fit takes a step however short its budget
     EXPECT_EQ(jobs::planned_iterations(-2, 3), 1u);     // the budget already spent timing the steps
     EXPECT_EQ(jobs::planned_iterations(1e9, 1e-9), uint64_t(1) << 30);
-}
-
-// The last round's regrowth: off at a peak of 1 and where the round is too short to grow and
-// settle; otherwise a re-fit's schedule (every band, no opacity resets) growing to the peak over
-// the round's first share and settling back to the count after it.
-TEST(RegrowthSchedule, GrowsOverTheRoundsFirstShareAndSettlesBackToTheCount) {
-    jobs::RecoverOptions options;
-    EXPECT_FALSE(jobs::regrowth_schedule(options, 40000, 60000)) << "a peak of 1 regrows nothing";
-    options.regrow_peak = 1.5;
-    options.regrow_share = 0.3;
-    const auto s = jobs::regrowth_schedule(options, 40000, 60000);
-    ASSERT_TRUE(s);
-    EXPECT_EQ(s->reference.densify_until, 18000u);
-    EXPECT_EQ(s->budget.settle_at, 18000u);
-    EXPECT_EQ(s->budget.iterations, 60000u);
-    EXPECT_EQ(s->budget.budget, 40000u);
-    EXPECT_EQ(s->budget.start, 40000u);
-    EXPECT_EQ(train::growth_target(s->reference, s->budget, 18000), 60000u);
-    EXPECT_EQ(train::growth_target(s->reference, s->budget, 100), 40000u);
-    for (uint64_t i = 1; i <= 60000; i += 499) {
-        const train::ScheduledStep step = train::scheduled_step(s->reference, i);
-        EXPECT_EQ(step.sh_degree, options.finetune.train.sh_degree) << i;
-        EXPECT_FALSE(step.reset_opacity) << i;
-        EXPECT_FALSE(step.prune_large) << i;
-        EXPECT_EQ(step.densify, i > 500 && i < 18000 && i % 100 == 0) << i;
-    }
-    // A window without room for a few densifications: none (snowmiku's re-fit of 300 steps).
-    EXPECT_FALSE(jobs::regrowth_schedule(options, 37000, 300));
-    EXPECT_FALSE(jobs::regrowth_schedule(options, 37000, 3000));
-    EXPECT_TRUE(jobs::regrowth_schedule(options, 37000, 4000));
 }
 
 class RecoverBudget : public GpuTest {
@@ -187,54 +156,6 @@ TEST_F(RecoverBudget, TheRoundsShareOneBudget) {
     for (const jobs::RecoverRound& round : result.rounds) EXPECT_GE(round.refit.iterations, 1u);
     EXPECT_GE(seconds, 3.0) << "the rounds ended before the budget's deadline";
     EXPECT_LT(seconds, 30) << "a 3 s budget over 3 rounds ran " << seconds << " s";
-}
-
-// A re-fit that grows its model to twice its count and settles back (what prune --recover's last
-// round runs with RecoverOptions::regrow_peak): the settlings remove at least what growth added,
-// and the model ends at most at its count.
-TEST_F(RecoverBudget, RegrowthGrowsTheModelPastItsCountAndSettlesItBack) {
-    const prune::ViewTotals totals = prune::accumulate(renderer, truth, cameras, {1, 2, 3, 4}, RenderSettings{});
-    const GaussianCloud model =
-        truth.subset(prune::Ranking(prune::score(truth, totals, prune::ScoreMethod::blend), prune::lossless_mask(totals))
-                         .keep_best(truth.size() / 4));
-    jobs::RecoverOptions recover;
-    recover.regrow_peak = 2.0;
-    recover.regrow_share = 0.5;
-    const uint64_t iterations = 2000;
-    const auto schedule = jobs::regrowth_schedule(recover, model.size(), iterations);
-    ASSERT_TRUE(schedule);
-    // The schedule shrunk five times over, for lavapipe's time; every Gaussian drawn since the last
-    // densification a candidate, so that growth reaches the peak whatever this scene's gradients.
-    auto reference = schedule->reference;
-    auto budget = schedule->budget;
-    reference.densify_from /= 5;
-    reference.densify_until /= 5;
-    reference.densify_interval /= 5;
-    budget.settle_at /= 5;
-    budget.settle_spacing /= 5;
-    budget.iterations /= 5;
-    budget.min_gradient = 0;
-    auto o = options;
-    o.iterations = budget.iterations;
-    o.train.position_schedule = train::PositionSchedule::decay;
-    train::BudgetStrategy* strategy = nullptr;
-    o.strategy = [&](uint64_t planned) {
-        EXPECT_EQ(planned, budget.iterations);
-        auto made = std::make_unique<train::BudgetStrategy>(reference, budget, [](const GaussianCloud& cloud) {
-                std::vector<float> opacity(cloud.size());
-                for (size_t i = 0; i < cloud.size(); ++i) opacity[i] = cloud.opacity_logits[i];
-                return opacity;
-            });
-        strategy = made.get();
-        return made;
-    };
-    const auto result = jobs::finetune_scene(context(), model, cameras, photos, o);
-    ASSERT_NE(strategy, nullptr);
-    EXPECT_EQ(result.iterations, budget.iterations);
-    EXPECT_LE(result.cloud.size(), model.size());
-    EXPECT_GE(result.cloud.size(), model.size() * 9 / 10) << "only the transparent go besides the settling";
-    EXPECT_GE(strategy->events().pruned, model.size() * 9 / 10) << "growth to twice the count, settled back";
-    EXPECT_EQ(strategy->events().prune_events, 3u);
 }
 
 // A size budget drops SH bands before the last round's re-fit (prune_scene), through

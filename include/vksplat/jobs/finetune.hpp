@@ -10,7 +10,6 @@
 #include <cstdint>
 #include <filesystem>
 #include <functional>
-#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -22,7 +21,6 @@
 #include "vksplat/io/write_mode.hpp"
 #include "vksplat/eval/quality.hpp"
 #include "vksplat/render/renderer.hpp"
-#include "vksplat/train/strategy.hpp"
 #include "vksplat/train/trainer.hpp"
 #include "vksplat/train/training_loop.hpp"
 
@@ -85,10 +83,6 @@ struct FinetuneOptions {
     // Warnings and notes for the user, each a line, given before the first step (cameras left out
     // of the extent, test views that are also trained on, where a resume starts).
     std::function<void(const std::string&)> notice;
-    // What the loop does around the steps, made once the run's iteration count is known (with a
-    // time budget, the planned count); unset: train::RefitStrategy, the Gaussians as they are.
-    // prune --recover's last round grows and settles its model this way (RecoverOptions::regrow_peak).
-    std::function<std::unique_ptr<train::Strategy>(uint64_t iterations)> strategy;
 
     // The position rate at its final value, and the scene extent (0) found from the training
     // cameras by train::scene_extent. With PositionSchedule::decay the position rate falls from

@@ -12,7 +12,6 @@
 #include "vksplat/jobs/finetune.hpp"
 #include "vksplat/prune/scores.hpp"
 #include "vksplat/prune/selection.hpp"
-#include "vksplat/train/budget_strategy.hpp"
 
 namespace vksplat::jobs {
 
@@ -57,15 +56,6 @@ struct RecoverOptions {
     // (jobs::prune_scene), so that the longest re-fit adapts the rest to their loss. Dropped after
     // the re-fit instead, nothing made up for them: snowmiku at 0.9 MB lost 0.461 dB that way.
     std::function<GaussianCloud(const GaussianCloud& model, std::span<const double> blend)> before_last_refit;
-    // Regrowth in the last round (train::BudgetStrategy, as the budget recipe of `train` spends its
-    // peak): over the first regrow_share of the round's steps, the reference's clone and split add
-    // the Gaussians of the largest view-space gradients until the model holds regrow_peak x its
-    // count, then three settlings 1,000 steps apart keep the most important by `method` (a sample
-    // where `sampled`) down to the count, and the position rate decays afresh over the rest.
-    // 1: no regrowth. Only where the round has room for it (regrowth_schedule), and not with a time
-    // budget (`seconds`), whose steps are not known ahead.
-    double regrow_peak = 1.0;
-    double regrow_share = 0.3;
 
     RecoverOptions() { finetune.train.position_schedule = train::PositionSchedule::decay; }
 };
@@ -129,15 +119,6 @@ double round_seconds(double remaining, int round, int rounds, bool spaced = fals
 // through checked_photo). For commands to call before they score the views, which takes minutes on
 // a real scene, so that a bad photo is not found only after.
 void check_recover(const RecoverOptions& options, const std::vector<Camera>& cameras, const PhotoSource& photos);
-
-// The schedules of the last round's regrowth (RecoverOptions::regrow_peak) for a model of `count`
-// Gaussians and a re-fit of `iterations` steps, or nothing where there is none: a peak of 1, or a
-// growth window too short for a densification and its settlings.
-struct RegrowthSchedule {
-    train::ReferenceSchedule reference;
-    train::BudgetSchedule budget;
-};
-std::optional<RegrowthSchedule> regrowth_schedule(const RecoverOptions& options, size_t count, uint64_t iterations);
 
 // How a round ranks its model's Gaussians from their scores and candidates: by score, or with
 // options.sampled by prune::sampling_keys seeded by finetune.seed and the round (1-based).

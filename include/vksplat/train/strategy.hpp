@@ -34,9 +34,8 @@ public:
 // every 3,000 iterations before 15,000, and at 500 on a white background.
 struct ReferenceSchedule {
     int sh_degree = 3;
-    uint64_t sh_degree_interval = 1000;  // 0: every band from the first step (a re-fit's)
+    uint64_t sh_degree_interval = 1000;
     uint64_t densify_from = 500, densify_until = 15000, densify_interval = 100;
-    // 0: no opacity resets, and so no pruning of the oversized (a re-fit keeps what it was given)
     uint64_t opacity_reset_interval = 3000;
     double opacity_reset_value = 0.01;
     // Threshold 0.0002, percent dense 0.01, min opacity 0.005, no screen-size prune; prune_large is
