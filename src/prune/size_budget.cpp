@@ -88,12 +88,17 @@ size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t
     if (most == 0) return 0;
     size_t low = 1, low_bytes = bytes_of(1);
     if (low_bytes > max_bytes) return 0;
-    size_t high = most, high_bytes = bytes_of(most);
-    if (high_bytes <= max_bytes) return most;
-    // From here low fits and high does not: the answer lies in [low, high - 1].
+    // low fits; high, once known (high <= most), does not. Until then the slope comes from the two
+    // largest counts that fit (`before` and low): writing every candidate to find the bracket's top
+    // would cost the most of any count (bonsai: all 400k Gaussians, 2 s, where a 3 MB model of 90k
+    // takes a third of a second), so `most` is tried only where the line says it may fit.
+    size_t high = most + 1, high_bytes = 0;
+    size_t before = 0, before_bytes = 0;
     const auto try_count = [&](size_t count) {
         const size_t bytes = bytes_of(count);
         if (bytes <= max_bytes) {
+            before = low;
+            before_bytes = low_bytes;
             low = count;
             low_bytes = bytes;
         } else {
@@ -102,23 +107,31 @@ size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t
         }
         return bytes;
     };
+    // A second count for the slope, small enough to cost little and large enough that a file's
+    // fixed part (headers, a compressor's start) does not set it.
+    constexpr size_t kSlopeCount = 1024;
+    if (most > 1) try_count(std::min(most, kSlopeCount));
     // Each count costs a file written (bonsai at 3 MB: a third of a second), and a choice's search
     // by halving took ~20 of them. A file grows nearly in proportion to its Gaussians, so the count
-    // where the line between the bracket's ends meets the budget lands near the answer, on one
-    // side of it; a second count as far past it as the line says it missed by (twice, and at least
-    // one) closes the bracket from the other side. Where a file's growth is far from a line and the
-    // two do not halve the bracket, the next count halves it: at worst three calls a halving.
+    // where the line through the counts tried meets the budget lands near the answer, on one side
+    // of it; a second count as far past it as the line says it missed by (twice, and at least one)
+    // closes the bracket from the other side. Where a file's growth is far from a line and the two
+    // do not halve the bracket, the next count halves it: at worst three calls a halving.
     bool halve = false;
     while (high - low > 1) {
         const size_t width = high - low;
-        const double per_gaussian = double(high_bytes - low_bytes) / double(width);  // > 0: high_bytes > low_bytes
-        const size_t guess = halve ? low + width / 2
-                                   : std::clamp(low + size_t(double(max_bytes - low_bytes) / per_gaussian), low + 1,
-                                                high - 1);
+        const double per_gaussian = high <= most ? double(high_bytes - low_bytes) / double(width)
+                                                 : double(low_bytes - std::min(low_bytes, before_bytes)) /
+                                                       double(low - before);
+        const size_t guess =
+            halve || !(per_gaussian > 0)
+                ? low + width / 2
+                : std::clamp(low + size_t(std::min(double(max_bytes - low_bytes) / per_gaussian, double(most))),
+                             low + 1, high - 1);
         const size_t bytes = try_count(guess);
-        if (!halve && high - low > 1) {
+        if (!halve && high - low > 1 && per_gaussian > 0) {
             const double missed = std::abs(double(max_bytes) - double(bytes)) / per_gaussian;
-            const size_t reach = size_t(2.0 * missed) + 1;
+            const size_t reach = size_t(std::min(2.0 * missed, double(most))) + 1;
             const size_t past = bytes <= max_bytes ? std::min(high - 1, guess + reach)
                                                    : (guess - low > reach ? guess - reach : low + 1);
             if (past > low && past < high) try_count(past);

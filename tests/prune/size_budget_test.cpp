@@ -39,12 +39,19 @@ TEST(LargestFitting, FindsTheLastCountThatFitsInAFewCallsWhereBytesGrowAsALine) 
     EXPECT_EQ(prune::largest_fitting(0, 100000, bytes_of), 0u);
     // A compressed file: a line with a wobble of a few bytes that never falls.
     calls = 0;
+    size_t written = 0;  // Gaussians written in all: what the search costs
     const auto wobbly = [&](size_t count) {
         ++calls;
+        written += count;
         return 5000 + 37 * count + (count * 7919 % 13);
     };
     EXPECT_EQ(prune::largest_fitting(400000, 3000000, wobbly), 80945u);
     EXPECT_LE(calls, 8u);
+    // The whole cloud is not written where the line says it cannot fit: a file of all 400,000 would
+    // cost more than the search's other counts together.
+    EXPECT_LT(written, 6 * 80945u) << calls << " calls";
+    // Where it fits, it is found.
+    EXPECT_EQ(prune::largest_fitting(400000, 15000000, wobbly), 400000u);
 }
 
 TEST(LargestFitting, IsExactAndNeverMuchSlowerThanBisectionWhereBytesAreFarFromALine) {

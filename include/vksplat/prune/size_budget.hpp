@@ -55,7 +55,8 @@ size_t scene_file_bytes(const GaussianCloud& cloud, const std::string& format);
 // fall as the count grows); 0 when not even a count of 1 fits, or most is 0. The search interpolates
 // between the counts it has tried, since files grow nearly in proportion to their Gaussians, and
 // halves where that does not close in: about 5 calls for a near-linear file where bisection took
-// 20, at worst three for each halving.
+// 20, at worst three for each halving. It asks for `most`, the costliest count, only where the
+// line through the counts below says it may fit.
 size_t largest_fitting(size_t most, size_t max_bytes, const std::function<size_t(size_t)>& bytes_of);
 
 // Throws InputError, naming the smallest size reachable, unless `smallest` (the smallest model
