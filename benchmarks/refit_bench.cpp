@@ -220,13 +220,17 @@ int main(int argc, char** argv) {
             prune_options.mode = io::WriteMode::overwrite;
             jobs::PruneProgress progress;
             progress.refit = [&](int, const train::LoopStatus& s) { report(s); };
-            progress.probe = [](const prune::BudgetProbe& p) {
-                std::printf("probe: %zu Gaussians, SH %d, %.0f%% of the higher bands dropped, bits %d,%d, %zu bytes: "
-                            "%sdrop %.3f dB\n",
-                            p.kept, p.sh_degree, 100.0 * p.sh_share, p.sh_precision.degree1_bits,
-                            p.sh_precision.higher_bits, p.bytes, p.refitted ? "re-fitted (short) " : "", p.drop);
-            };
+            // Each probe's own time and when it ended, so that a run shows where the job's time goes
+            // (the search for each probe's count, its re-fit, its measurement, and what lies between).
             const auto job_start = std::chrono::steady_clock::now();
+            progress.probe = [&job_start](const prune::BudgetProbe& p) {
+                std::printf("probe: %zu Gaussians, SH %d, %.0f%% of the higher bands dropped, bits %d,%d, %zu bytes: "
+                            "%sdrop %.3f dB (%.1f s, at %.1f s)\n",
+                            p.kept, p.sh_degree, 100.0 * p.sh_share, p.sh_precision.degree1_bits,
+                            p.sh_precision.higher_bits, p.bytes, p.refitted ? "re-fitted (short) " : "", p.drop,
+                            p.seconds,
+                            std::chrono::duration<double>(std::chrono::steady_clock::now() - job_start).count());
+            };
             const jobs::PruneResult pruned = jobs::prune_scene(renderer, cloud, cameras, prune_options, progress);
             const double job_seconds =
                 std::chrono::duration<double>(std::chrono::steady_clock::now() - job_start).count();
