@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <thread>
+#include <vector>
 
 #include <Eigen/Dense>
 #include <glm/gtc/quaternion.hpp>
@@ -13,6 +13,7 @@
 #include "vksplat/constants.hpp"
 #include "vksplat/reference/rasterizer.hpp"
 #include "vksplat/reference/sh.hpp"
+#include "prune/parallel_for.hpp"
 
 namespace vksplat::prune {
 namespace {
@@ -127,22 +128,6 @@ struct ViewSplats {
     // pixels, and the test spares them the exp (a margin of 1e-9 leaves the exact test to the rest).
     std::vector<double> min_power;
 };
-
-// Runs fn(item, worker) for item in [0, count) on `workers` threads, worker w taking the items
-// w, w + workers, ...: which worker sums which item depends on nothing but the count of workers,
-// so the sums are the same every run on one machine.
-template <typename Fn>
-void parallel_for(size_t count, unsigned workers, Fn fn) {
-    const auto work = [&](unsigned worker) {
-        for (size_t item = worker; item < count; item += workers) fn(item, worker);
-    };
-    std::vector<std::thread> threads;
-    for (unsigned t = 1; t < workers; ++t) threads.emplace_back(work, t);
-    work(0);
-    for (auto& thread : threads) thread.join();
-}
-
-unsigned worker_count() { return std::max(1u, std::thread::hardware_concurrency()); }
 
 // The visible splats overlapping each tile, in index order.
 std::vector<std::vector<uint32_t>> tile_members(const std::vector<reference::ProjectedGaussian>& splats, int tiles_x,

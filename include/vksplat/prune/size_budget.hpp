@@ -6,10 +6,11 @@
 // dropped per Gaussian (s = 0, 1/2D, 2/2D, ..., 1; prune/sh_reduction.hpp, among the Gaussians
 // kept), and the whole cloud at each degree between 1 and D - 1; each at every SH precision of the
 // budget (below). Dropping bands per Gaussian only shrinks a file whose format compresses zeros
-// (SPZ); a choice whose file of every candidate is no smaller than that of the unreduced one is
-// skipped unmeasured, as it can only keep fewer Gaussians and less colour. For every other choice,
-// a search on the count kept (best first, as a Ranking orders them; largest_fitting) finds the most
-// Gaussians whose file fits, each probe writing the file; each choice's model is then rendered on the test
+// (SPZ); a choice whose file of the best 8,192 candidates is no smaller than that of the
+// unreduced one is skipped unmeasured, as it can only keep fewer Gaussians and less colour. For
+// every other choice, a search on the count kept (best first, as a Ranking orders them;
+// largest_fitting) finds the most Gaussians whose file fits, each probe writing the file (the
+// choices' searches run on all cores at once); each choice's model is then rendered on the test
 // views, and the one of least PSNR drop (as quality_budget.hpp defines it) is kept. When every
 // candidate at full SH fits, that is the model.
 #include <cstddef>
