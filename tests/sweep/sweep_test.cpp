@@ -363,7 +363,9 @@ TEST_F(Sweep, SizesEveryModelInEachFormatAsItsWriterDoes) {
         EXPECT_EQ(m.file_bytes[3].second, m.bytes) << "the PLY written is the PLY counted";
         for (size_t k = 0; k < 4; ++k) {
             EXPECT_EQ(std::stoul(csv[1 + r][csv[1 + r].size() - 4 + k]), m.file_bytes[k].second);
-            if (r > 0) EXPECT_LT(m.file_bytes[k].second, result.rows[r - 1].measure.file_bytes[k].second);
+            if (r > 0) {
+                EXPECT_LT(m.file_bytes[k].second, result.rows[r - 1].measure.file_bytes[k].second);
+            }
         }
     }
     // One line per format, in the order asked, each through every fraction, x in megabytes.
@@ -434,8 +436,12 @@ TEST_F(Sweep, ReportsATimeLeftThatFallsThroughScoringAndReFits) {
             continue;
         }
         ASSERT_TRUE(r.left);
-        if (i + 1 < reports.size()) EXPECT_GT(*r.left, 0.0) << "no time left while there is work left";
-        if (i > first_step) EXPECT_LE(*r.left, 1.2 * *reports[i - 1].left + 0.05);
+        if (i + 1 < reports.size()) {
+            EXPECT_GT(*r.left, 0.0) << "no time left while there is work left";
+        }
+        if (i > first_step) {
+            EXPECT_LE(*r.left, 1.2 * *reports[i - 1].left + 0.05);
+        }
     }
     EXPECT_EQ(*reports.back().left, 0.0);
     const double followed = std::chrono::duration<double>(end - reports[first_step].at).count();
