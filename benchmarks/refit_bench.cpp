@@ -104,6 +104,11 @@ int main(int argc, char** argv) {
     bool sampled = recover_defaults.sampled;
     app.add_option("--sample", sampled,
                    "true: keep a weighted random sample by score in every round, not the best-scored");
+    bool deterministic = false, fast_sums = false;
+    auto* deterministic_flag = app.add_flag(
+        "--deterministic", deterministic,
+        "fixed-point gradient sums (finetune --deterministic; the commands' default where the device has 64-bit atomics)");
+    app.add_flag("--fast-sums", fast_sums, "float-atomic gradient sums (finetune --fast-sums)")->excludes(deterministic_flag);
     app.add_option("--position-lr", position_lr,
                    "final: the reference's final rate throughout; decay: initial to final (default: final for a\n"
                    "plain re-fit, as finetune; decay with --drop and --max-mb, as prune --recover)")
@@ -155,6 +160,10 @@ int main(int argc, char** argv) {
         options.train.background = {background[0], background[1], background[2]};
         options.train.ssim_weight = ssim_weight;
         if (position_lr == "decay") options.train.position_schedule = train::PositionSchedule::decay;
+        // As `vksplat finetune` and `prune --recover` decide (fixed point wherever the device has
+        // 64-bit atomics): before, this bench summed with float atomics unless told, which those
+        // commands no longer do by default.
+        options.train.deterministic = train::fixed_point_sums(context, deterministic, fast_sums);
         const auto test = jobs::default_test_views(cameras);
 
         std::map<size_t, io::ImageRGB> test_photos;
@@ -189,7 +198,8 @@ int main(int argc, char** argv) {
             }
             return q;
         };
-        std::printf("%s: %zu Gaussians on %s\n", scene_path.c_str(), cloud.size(), context.info().name.c_str());
+        std::printf("%s: %zu Gaussians on %s, gradients summed %s\n", scene_path.c_str(), cloud.size(),
+                    context.info().name.c_str(), options.train.deterministic ? "in fixed point" : "with float atomics");
         print_file_bytes("input file", cloud);
         const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
         const auto report = [](const train::LoopStatus& s) {

@@ -71,8 +71,11 @@ int main(int argc, char** argv) {
     std::string budget_score = std::string(prune::to_string(recipe.budget_score));
     app.add_option("--budget-score", budget_score, "the budget recipe's ranking (a prune --method)");
     app.add_option("--evaluate-every", evaluate_every, "test PSNR every N iterations into metrics.json's history");
-    bool deterministic = false;
-    app.add_flag("--deterministic", deterministic, "fixed-point gradient sums (train --deterministic)");
+    bool deterministic = false, fast_sums = false;
+    auto* deterministic_flag = app.add_flag("--deterministic", deterministic,
+                                            "fixed-point gradient sums (train --deterministic; train's default where the "
+                                            "device has 64-bit atomics)");
+    app.add_flag("--fast-sums", fast_sums, "float-atomic gradient sums (train --fast-sums)")->excludes(deterministic_flag);
     std::string blend_backward = "fastest";
     app.add_option("--blend-backward", blend_backward,
                    "fastest (time both forms on the first steps, keep the faster), per-pixel or per-splat")
@@ -100,7 +103,9 @@ int main(int argc, char** argv) {
         options.out_dir = out_dir;
         options.checkpoint_every = recipe.iterations + 1;  // timing the steps, not the disk
         options.evaluate_every = evaluate_every;
-        options.deterministic = deterministic;
+        // As `vksplat train` decides, so that the bench times the sums the command runs.
+        options.deterministic = train::fixed_point_sums(context, deterministic, fast_sums);
+        std::printf("gradients summed %s\n", options.deterministic ? "in fixed point" : "with float atomics");
         options.blend_backward = blend_backward == "per-pixel"   ? train::BlendBackward::per_pixel
                                  : blend_backward == "per-splat" ? train::BlendBackward::per_splat
                                                                  : train::BlendBackward::fastest;

@@ -316,6 +316,9 @@ Trainer::Trainer(const gpu::Context& context, const std::filesystem::path& check
 Trainer::~Trainer() = default;
 
 bool deterministic_by_default(const gpu::Context& context) { return context.info().int64_atomics; }
+bool fixed_point_sums(const gpu::Context& context, bool deterministic, bool fast_sums) {
+    return !fast_sums && (deterministic || deterministic_by_default(context));
+}
 
 StepResult Trainer::step(const Camera& camera, const Photo& photo) {
     submit(camera, photo);

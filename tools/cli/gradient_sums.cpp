@@ -4,7 +4,7 @@
 namespace vksplat::cli {
 
 bool GradientSumsArgs::fixed_point(const gpu::Context& context) const {
-    return !fast_sums && (deterministic || train::deterministic_by_default(context));
+    return train::fixed_point_sums(context, deterministic, fast_sums);
 }
 
 std::pair<CLI::Option*, CLI::Option*> add_gradient_sums_flags(CLI::App& command, GradientSumsArgs& args,

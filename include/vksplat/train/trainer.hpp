@@ -92,6 +92,11 @@ struct TrainOptions {
 // 1.09x at 400,000 (1.00x and 1.07x wall time), under the 10% at which issue 31 asked for the same
 // run giving the same bytes to become the default; --fast-sums takes float atomics in any order.
 bool deterministic_by_default(const gpu::Context& context);
+// What a command sums gradients with, from its flags: fixed point where asked (--deterministic;
+// refused later where the device cannot) or by default (deterministic_by_default), float atomics
+// where asked (--fast-sums). The CLI and the benchmarks decide alike, so that a benchmark measures
+// what the command runs.
+bool fixed_point_sums(const gpu::Context& context, bool deterministic, bool fast_sums);
 
 // A photo as the loss reads it: RGBA8 per pixel, r in the low byte, row-major, top row first.
 // Alpha 0 masks a pixel out of the loss (it neither counts nor pulls); any other alpha counts.
