@@ -52,6 +52,19 @@ std::vector<ShPrecision> precisions_of(const SizeBudget& budget) {
     return {std::begin(kSizeBudgetPrecisions), std::end(kSizeBudgetPrecisions)};
 }
 
+// How many count searches run at once: one a core, but no more than a quarter of the host's
+// memory holds, each holding about three models as large as the cloud at worst while it writes a
+// file (the subset, its bands dropped or rounded, the file's bytes): a tiled scene of millions of
+// Gaussians on a machine of many cores would otherwise hold tens of gigabytes.
+unsigned search_workers(size_t searches, const GaussianCloud& cloud) {
+    const double memory = double(sysconf(_SC_PHYS_PAGES)) * double(sysconf(_SC_PAGE_SIZE));
+    const double model = double(sizeof(float)) * double(cloud.positions.size() + cloud.log_scales.size() +
+                                                        cloud.rotations.size() + cloud.opacity_logits.size() +
+                                                        cloud.sh.size());
+    const double fit = memory > 0 && model > 0 ? 0.25 * memory / (3.0 * model) : double(worker_count());
+    return unsigned(std::clamp<double>(std::min({double(worker_count()), double(searches), fit}), 1.0, 1024.0));
+}
+
 std::vector<double> kept_values(std::span<const double> values, const KeepMask& keep) {
     std::vector<double> kept;
     if (values.empty()) return kept;
@@ -293,18 +306,17 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
     // Each choice's count is searched by writing files, host work of seconds a choice on a real
     // scene and independent of the others, so the searches share the cores; the measurements
     // (the GPU's) follow one by one.
-    parallel_for(searches.size(), std::min<unsigned>(worker_count(), unsigned(searches.size())),
-                 [&](size_t k, unsigned) {
-                     Search& search = searches[k];
-                     std::map<size_t, size_t> sizes;  // by count: each file is written once
-                     const auto bytes_of = [&](size_t kept) {
-                         auto [entry, fresh] = sizes.try_emplace(kept, 0);
-                         if (fresh) entry->second = scene_file_bytes(model_of(kept, search.choice), budget.format);
-                         return entry->second;
-                     };
-                     search.kept = largest_fitting(most, budget.max_bytes, bytes_of);
-                     if (search.kept > 0) search.bytes = bytes_of(search.kept);
-                 });
+    parallel_for(searches.size(), search_workers(searches.size(), cloud), [&](size_t k, unsigned) {
+        Search& search = searches[k];
+        std::map<size_t, size_t> sizes;  // by count: each file is written once
+        const auto bytes_of = [&](size_t kept) {
+            auto [entry, fresh] = sizes.try_emplace(kept, 0);
+            if (fresh) entry->second = scene_file_bytes(model_of(kept, search.choice), budget.format);
+            return entry->second;
+        };
+        search.kept = largest_fitting(most, budget.max_bytes, bytes_of);
+        if (search.kept > 0) search.bytes = bytes_of(search.kept);
+    });
     bool all_fit = false;
     for (const Search& search : searches) {
         if (search.kept > 0) probe(search.kept, search.choice, search.bytes);
