@@ -202,6 +202,24 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
     check_size_reachable(model_of(std::min<size_t>(most, 1), sh_choices(cloud.sh_degree, {})[size_t(2 * cloud.sh_degree)]),
                          budget);
 
+    // The most Gaussians of `choice` (at most `limit`) whose file fits in `max_bytes`, and that
+    // file's bytes; the search writes each count's file once.
+    struct Fit {
+        size_t kept = 0, bytes = 0;
+    };
+    const auto fit_choice = [&](const ShChoice& choice, size_t limit, size_t max_bytes) {
+        std::map<size_t, size_t> sizes;
+        const auto bytes_of = [&](size_t kept) {
+            auto [entry, fresh] = sizes.try_emplace(kept, 0);
+            if (fresh) entry->second = scene_file_bytes(model_of(kept, choice), budget.format);
+            return entry->second;
+        };
+        Fit fit;
+        fit.kept = largest_fitting(limit, max_bytes, bytes_of);
+        if (fit.kept > 0) fit.bytes = bytes_of(fit.kept);
+        return fit;
+    };
+
     BudgetResult result;
     result.met = true;
     if (views.photos) result.baseline_psnr = eval::measure_quality(renderer, cloud, views, settings, false).mean_psnr;
@@ -231,16 +249,13 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
             // cut to the smaller one without a re-fit, the every-band candidates measured worst
             // (bonsai 3 MB, 6,6 bits: -1.25 dB against -0.89) and the choice was a worse one.
             const double growth = double(scene_file_bytes(measured, budget.format)) / double(bytes);
-            const size_t fitting = growth <= 1.0 ? kept
-                                                 : largest_fitting(kept, size_t(double(budget.max_bytes) / growth),
-                                                                   [&](size_t count) {
-                                                                       return scene_file_bytes(model_of(count, choice),
-                                                                                               budget.format);
-                                                                   });
-            if (fitting > 0 && fitting < kept) {
-                kept = fitting;
-                bytes = scene_file_bytes(model_of(kept, choice), budget.format);
-                model = model_of(kept, choice);
+            if (growth > 1.0) {
+                const Fit fitting = fit_choice(choice, kept, size_t(double(budget.max_bytes) / growth));
+                if (fitting.kept > 0 && fitting.kept < kept) {
+                    kept = fitting.kept;
+                    bytes = fitting.bytes;
+                    model = model_of(kept, choice);
+                }
             }
         }
         const eval::Quality quality = eval::measure_quality(renderer, measured, views, settings, false);
@@ -281,7 +296,7 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
     struct Search {
         ShChoice choice;
         bool unreduced = false;   // every band of the cloud's degree: if all of it fits, nothing to trade
-        size_t kept = 0, bytes = 0;
+        Fit fit;
     };
     std::vector<Search> searches;  // in the order they are measured
     size_t full_precision_sample = 0;  // the unreduced sample's file at full precision
@@ -300,27 +315,19 @@ BudgetResult fit_size_budget(Renderer& renderer, const GaussianCloud& cloud, con
             } else if (per_gaussian && sample_bytes(choice) >= unreduced_sample) {
                 continue;  // the format does not store these zeros in fewer bytes
             }
-            searches.push_back({choice, unreduced});
+            searches.push_back({choice, unreduced, {}});
         }
     }
     // Each choice's count is searched by writing files, host work of seconds a choice on a real
     // scene and independent of the others, so the searches share the cores; the measurements
     // (the GPU's) follow one by one.
     parallel_for(searches.size(), search_workers(searches.size(), cloud), [&](size_t k, unsigned) {
-        Search& search = searches[k];
-        std::map<size_t, size_t> sizes;  // by count: each file is written once
-        const auto bytes_of = [&](size_t kept) {
-            auto [entry, fresh] = sizes.try_emplace(kept, 0);
-            if (fresh) entry->second = scene_file_bytes(model_of(kept, search.choice), budget.format);
-            return entry->second;
-        };
-        search.kept = largest_fitting(most, budget.max_bytes, bytes_of);
-        if (search.kept > 0) search.bytes = bytes_of(search.kept);
+        searches[k].fit = fit_choice(searches[k].choice, most, budget.max_bytes);
     });
     bool all_fit = false;
     for (const Search& search : searches) {
-        if (search.kept > 0) probe(search.kept, search.choice, search.bytes);
-        if (search.unreduced && search.kept == most) {  // everything fits: nothing to trade
+        if (search.fit.kept > 0) probe(search.fit.kept, search.choice, search.fit.bytes);
+        if (search.unreduced && search.fit.kept == most) {  // everything fits: nothing to trade
             all_fit = true;
             break;
         }
