@@ -8,20 +8,16 @@
 
 SHADER_NAMESPACE_BEGIN(train)
 
-// densify_gather.comp: the new parameter array and moments from the old ones.
+// densify_gather.comp: one new array (parameters or a moment) from the old one of that kind.
 struct DensifyGatherPush {
-    Floats old_params;
-    Floats old_first;
-    Floats old_second;
-    Floats new_params;
-    Floats new_first;
-    Floats new_second;
+    Floats old_values;
+    Floats new_values;
     Uints sources;         // per new Gaussian: the old one it copies
     Floats overrides;      // per overridden Gaussian: position (3), log-scale (3), opacity logit (1)
     uint old_count;
     uint new_count;
-    uint fresh_from;       // new Gaussians (zero moments) from here on
-    uint override_from;    // Gaussians with values of their own (overrides) from here on
+    uint zero_from;        // Gaussians from here on get zeros (new Gaussians' moments); new_count: none
+    uint override_from;    // Gaussians with values of their own (overrides) from here on; new_count: none
     uint sh_floats;        // SH floats per Gaussian (3 K)
 };
 

@@ -63,6 +63,10 @@ Buffer::Buffer(const Context& context, VkDeviceSize size, MemoryKind kind, std::
         if (result == VK_ERROR_OUT_OF_DEVICE_MEMORY || result == VK_ERROR_OUT_OF_HOST_MEMORY)
             throw GpuError(out_of_memory_message(result, name_, alloc_size, d.info));
         check(result, "vkAllocateMemory");
+        if (kind == MemoryKind::device) {
+            counted_ = requirements.size;
+            d.device_bytes_allocated(counted_);
+        }
         VKSPLAT_VK(d.vk.vkBindBufferMemory(d.device, buffer_, memory_, 0));
         if (kind != MemoryKind::device)
             VKSPLAT_VK(d.vk.vkMapMemory(d.device, memory_, 0, VK_WHOLE_SIZE, 0, &mapped_));
@@ -88,6 +92,7 @@ Buffer& Buffer::operator=(Buffer&& other) noexcept {
         buffer_ = std::exchange(other.buffer_, VK_NULL_HANDLE);
         memory_ = std::exchange(other.memory_, VK_NULL_HANDLE);
         size_ = std::exchange(other.size_, 0);
+        counted_ = std::exchange(other.counted_, 0);
         address_ = std::exchange(other.address_, 0);
         mapped_ = std::exchange(other.mapped_, nullptr);
         name_ = std::move(other.name_);
@@ -100,6 +105,7 @@ void Buffer::release() {
     const auto& d = context_->impl();
     if (buffer_) d.vk.vkDestroyBuffer(d.device, buffer_, nullptr);
     if (memory_) d.vk.vkFreeMemory(d.device, memory_, nullptr);  // unmaps implicitly
+    d.device_bytes_freed(std::exchange(counted_, 0));
     buffer_ = VK_NULL_HANDLE;
     memory_ = VK_NULL_HANDLE;
     mapped_ = nullptr;

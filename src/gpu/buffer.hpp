@@ -42,6 +42,7 @@ private:
     VkBuffer buffer_ = VK_NULL_HANDLE;
     VkDeviceMemory memory_ = VK_NULL_HANDLE;
     VkDeviceSize size_ = 0;
+    VkDeviceSize counted_ = 0;  // device memory this buffer adds to its context's held bytes
     VkDeviceAddress address_ = 0;
     void* mapped_ = nullptr;
     std::string name_;

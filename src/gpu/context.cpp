@@ -444,4 +444,15 @@ std::vector<PipelineStatistics> Context::pipeline_statistics() const {
     return impl_->statistics;
 }
 
+void Context::Impl::device_bytes_allocated(uint64_t bytes) const {
+    const uint64_t held = held_device_bytes.fetch_add(bytes) + bytes;
+    uint64_t peak = peak_device_bytes.load();
+    while (held > peak && !peak_device_bytes.compare_exchange_weak(peak, held)) {
+    }
+}
+
+uint64_t Context::held_device_bytes() const { return impl_->held_device_bytes.load(); }
+uint64_t Context::peak_device_bytes() const { return impl_->peak_device_bytes.load(); }
+void Context::reset_peak_device_bytes() const { impl_->peak_device_bytes.store(impl_->held_device_bytes.load()); }
+
 }  // namespace vksplat::gpu

@@ -2,6 +2,7 @@
 // What the rest of the library sees of a Context: the device's function table and its limits.
 #include <volk.h>
 
+#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -27,6 +28,10 @@ struct Context::Impl {
     bool capture_statistics = false;  // pipelines are created with their statistics captured
     mutable std::mutex statistics_mutex;
     std::vector<PipelineStatistics> statistics;
+    // Context::held_device_bytes / peak_device_bytes, kept by Buffer (threads may allocate at once).
+    mutable std::atomic<uint64_t> held_device_bytes{0}, peak_device_bytes{0};
+    void device_bytes_allocated(uint64_t bytes) const;
+    void device_bytes_freed(uint64_t bytes) const { held_device_bytes.fetch_sub(bytes); }
 };
 
 inline const VolkDeviceTable& vk(const Context& context) { return context.impl().vk; }

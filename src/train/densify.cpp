@@ -153,35 +153,50 @@ DensifyInputs DensifyPasses::download_inputs(const TrainableScene& scene) const 
             gpu::read_buffer<float>(impl_->context, scene.densify, size_t(n) * kDensifyStride)};
 }
 
-TrainableScene DensifyPasses::apply(const TrainableScene& scene, const DensifyPlan& plan) const {
+void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) const {
     const auto& context = impl_->context;
-    const uint32_t m = uint32_t(plan.sources.size());
-    TrainableScene next = TrainableScene::allocate(context, m, scene.sh_degree);
-    if (m == 0) return next;
-    const gpu::Buffer sources = gpu::upload_buffer(context, plan.sources, "densify sources");
-    // A buffer is never empty, so a plan without splits still has one to point at.
-    std::vector<float> overrides = plan.overrides;
-    if (overrides.empty()) overrides.push_back(0.0f);
-    const gpu::Buffer override_buffer = gpu::upload_buffer(context, overrides, "densify overrides");
-    gpu::CommandStream stream(context, 0);
-    stream.begin();
-    stream.dispatch(impl_->gather,
-                    {.old_params = scene.params.address(),
-                     .old_first = scene.first_moment.address(),
-                     .old_second = scene.second_moment.address(),
-                     .new_params = next.params.address(),
-                     .new_first = next.first_moment.address(),
-                     .new_second = next.second_moment.address(),
-                     .sources = sources.address(),
-                     .overrides = override_buffer.address(),
-                     .old_count = scene.layout.count,
-                     .new_count = m,
-                     .fresh_from = plan.fresh_from,
-                     .override_from = plan.override_from,
-                     .sh_floats = scene.layout.sh_coefficients * 3},
-                    gpu::groups_for(m));
-    stream.submit_and_wait();
-    return next;
+    const uint32_t n = scene.layout.count, m = uint32_t(plan.sources.size());
+    const ParameterLayout next{m, scene.layout.sh_coefficients};
+    // Gradients and sums start at zero in the new scene, so the old ones go first; then each array
+    // is gathered and the old one freed before the next is made. The most held at once is the old
+    // scene's three arrays and one new one, or the new scene whole: never both scenes.
+    scene.grads = gpu::Buffer();
+    scene.densify = gpu::Buffer();
+    try {
+        // A buffer is never empty, so a plan that keeps nothing, or has no splits, still has one.
+        const auto upload = [&](auto values, const char* name) {
+            if (values.empty()) values.push_back({});
+            return gpu::upload_buffer(context, values, name);
+        };
+        const gpu::Buffer sources = upload(plan.sources, "densify sources");
+        const gpu::Buffer overrides = upload(plan.overrides, "densify overrides");
+        const auto gather = [&](gpu::Buffer& array, const char* name, uint32_t zero_from, uint32_t override_from) {
+            gpu::Buffer gathered = TrainableScene::allocate_array(context, next, name);
+            gpu::CommandStream stream(context, 0);
+            stream.begin();
+            stream.dispatch(impl_->gather,
+                            {.old_values = array.address(),
+                             .new_values = gathered.address(),
+                             .sources = sources.address(),
+                             .overrides = overrides.address(),
+                             .old_count = n,
+                             .new_count = m,
+                             .zero_from = zero_from,
+                             .override_from = override_from,
+                             .sh_floats = next.sh_coefficients * 3},
+                            gpu::groups_for(std::max(m, 1u)));
+            stream.submit_and_wait();
+            array = std::move(gathered);
+        };
+        gather(scene.params, "trained parameters", m, plan.override_from);
+        gather(scene.first_moment, "Adam first moments", plan.fresh_from, m);
+        gather(scene.second_moment, "Adam second moments", plan.fresh_from, m);
+        scene.layout = next;
+        scene.allocate_sums(context);
+    } catch (...) {
+        scene = TrainableScene();  // part old, part new: nothing of it can be used
+        throw;
+    }
 }
 
 void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) const {

@@ -45,23 +45,31 @@ GaussianCloud unpack_parameters(const std::vector<float>& packed, uint32_t count
     return cloud;
 }
 
+gpu::Buffer TrainableScene::allocate_array(const gpu::Context& context, const ParameterLayout& layout,
+                                           const char* name) {
+    // Buffers are never empty: a scene pruned to nothing still has somewhere to point.
+    return gpu::Buffer(context, std::max<uint64_t>(layout.total(), 1) * sizeof(float), gpu::MemoryKind::device, name);
+}
+
+void TrainableScene::allocate_sums(const gpu::Context& context) {
+    grads = allocate_array(context, layout, "parameter gradients");
+    densify = gpu::Buffer(context, std::max<uint64_t>(layout.count, 1) * kDensifyStride * sizeof(float),
+                          gpu::MemoryKind::device, "densification sums");
+    gpu::CommandStream stream(context, 0);
+    stream.begin();
+    stream.fill(grads, 0);
+    stream.fill(densify, 0);
+    stream.submit_and_wait();
+}
+
 TrainableScene TrainableScene::allocate(const gpu::Context& context, uint32_t count, int sh_degree) {
     TrainableScene scene;
     scene.layout = layout_of(count, sh_degree);
     scene.sh_degree = sh_degree;
-    // Buffers are never empty: a scene pruned to nothing still has somewhere to point.
-    const uint64_t bytes = std::max<uint64_t>(scene.layout.total(), 1) * sizeof(float);
-    scene.params = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "trained parameters");
-    scene.grads = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "parameter gradients");
-    scene.first_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam first moments");
-    scene.second_moment = gpu::Buffer(context, bytes, gpu::MemoryKind::device, "Adam second moments");
-    scene.densify = gpu::Buffer(context, std::max<uint64_t>(count, 1) * kDensifyStride * sizeof(float),
-                                gpu::MemoryKind::device, "densification sums");
-    gpu::CommandStream stream(context, 0);
-    stream.begin();
-    stream.fill(scene.grads, 0);
-    stream.fill(scene.densify, 0);
-    stream.submit_and_wait();
+    scene.params = allocate_array(context, scene.layout, "trained parameters");
+    scene.first_moment = allocate_array(context, scene.layout, "Adam first moments");
+    scene.second_moment = allocate_array(context, scene.layout, "Adam second moments");
+    scene.allocate_sums(context);
     return scene;
 }
 

@@ -23,6 +23,10 @@ struct TrainableScene {
     // Room for `count` Gaussians: parameters and moments uninitialised, gradients and
     // densification sums zero.
     static TrainableScene allocate(const gpu::Context& context, uint32_t count, int sh_degree);
+    // One array of `layout` (parameters, gradients or a moment), uninitialised.
+    static gpu::Buffer allocate_array(const gpu::Context& context, const ParameterLayout& layout, const char* name);
+    // Gradients and densification sums for the current layout, zero.
+    void allocate_sums(const gpu::Context& context);
     // Densification sums saved with a checkpoint (kDensifyStride floats per Gaussian) back on
     // the device, so that a resumed run densifies as the uninterrupted one would.
     void restore_densify_sums(const gpu::Context& context, const std::vector<float>& sums) const;

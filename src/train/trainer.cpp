@@ -168,7 +168,13 @@ struct Trainer::Impl {
     void record(Slot& slot, bool again);
     // Waits for `slot`'s step and keeps its result; `queued` is the step submitted behind it, if any.
     void finish_step(Slot& slot, Slot* queued);
+    // Densification that ran out of device memory leaves no scene (DensifyPasses::apply).
+    void check_scene() const {
+        if (!scene.params)
+            throw std::runtime_error("training cannot go on: densification ran out of device memory and left no scene");
+    }
     void finish() {
+        check_scene();
         if (!in_flight) return;
         Slot& slot = *in_flight;
         in_flight = nullptr;
@@ -188,6 +194,7 @@ Trainer::Impl::~Impl() {
 }
 
 void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
+    check_scene();
     camera.validate();
     if (target.width != camera.width || target.height != camera.height ||
         target.rgba.size() != size_t(target.width) * target.height)
@@ -348,8 +355,7 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
     d.finish();
     const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
-    TrainableScene next = d.densify.apply(d.scene, plan);
-    d.scene = std::move(next);
+    d.densify.apply(d.scene, plan);
     return plan.report;
 }
 
@@ -358,7 +364,7 @@ RelocationReport Trainer::relocate(const RelocationRules& rules) {
     d.finish();
     const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
     if (relocation.report.relocated + relocation.report.added > 0)
-        d.scene = d.densify.apply(d.scene, relocation.plan);
+        d.densify.apply(d.scene, relocation.plan);
     return relocation.report;
 }
 
@@ -377,9 +383,8 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     sums.reserve(plan.sources.size() * kDensifyStride);
     for (uint32_t i : plan.sources)
         sums.insert(sums.end(), before.begin() + i * kDensifyStride, before.begin() + (i + 1) * kDensifyStride);
-    TrainableScene next = d.densify.apply(d.scene, plan);
-    if (!sums.empty()) next.restore_densify_sums(d.context, sums);
-    d.scene = std::move(next);
+    d.densify.apply(d.scene, plan);
+    if (!sums.empty()) d.scene.restore_densify_sums(d.context, sums);
     return keep.size() - plan.sources.size();
 }
 
@@ -389,6 +394,7 @@ void Trainer::reset_opacity(double max_opacity) {
     impl_->densify.reset_opacity(impl_->scene, max_opacity);
 }
 
+const gpu::Context& Trainer::context() const { return impl_->context; }
 const SanitizeReport& Trainer::sanitize_report() const { return impl_->report; }
 size_t Trainer::size() const { return impl_->scene.layout.count; }
 GaussianCloud Trainer::cloud() const {

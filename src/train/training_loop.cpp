@@ -70,8 +70,8 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
             ++since_report;
         }
         check_skipped_steps(trainer, options.source);
-        result.peak_device_bytes = std::max(result.peak_device_bytes, trainer.device_bytes());
     };
+    trainer.context().reset_peak_device_bytes();
     const uint64_t first = trainer.iteration();
     while (trainer.iteration() < options.iterations) {
         if (options.stop && options.stop->load()) {
@@ -115,6 +115,7 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
     }
     trainer.finish();
     take_results();
+    result.peak_device_bytes = trainer.context().peak_device_bytes();
     result.seconds = seconds_since(start) - result.snapshot_seconds;
     if (result.interrupted && !options.checkpoint.empty()) trainer.save_checkpoint(options.checkpoint);
     result.iterations = trainer.iteration();

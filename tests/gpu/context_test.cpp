@@ -91,6 +91,31 @@ TEST(Buffer, DeviceBuffersHaveAddressesHostBuffersAreMapped) {
     EXPECT_EQ(empty.size(), 0u);
 }
 
+// The context counts device buffers as they come and go, and remembers the most it held; staging
+// buffers are host memory and do not count. A fresh context, so no other test's buffers are in it.
+TEST(Buffer, ContextCountsHeldAndPeakDeviceBytes) {
+    const Context context;
+    EXPECT_EQ(context.held_device_bytes(), 0u);
+    {
+        const Buffer a(context, 1 << 20, MemoryKind::device, "a");
+        const Buffer staging(context, 4 << 20, MemoryKind::upload, "staging");
+        EXPECT_GE(context.held_device_bytes(), 1u << 20);
+        EXPECT_LT(context.held_device_bytes(), 2u << 20);  // alignment rounds up, not the staging buffer
+        {
+            Buffer b(context, 3 << 20, MemoryKind::device, "b");
+            EXPECT_GE(context.held_device_bytes(), 4u << 20);
+            Buffer moved = std::move(b);  // moving hands the count over: it is counted once
+            EXPECT_LT(context.held_device_bytes(), 5u << 20);
+        }
+        EXPECT_LT(context.held_device_bytes(), 2u << 20);
+        EXPECT_GE(context.peak_device_bytes(), 4u << 20);
+        context.reset_peak_device_bytes();
+        EXPECT_EQ(context.peak_device_bytes(), context.held_device_bytes());
+    }
+    EXPECT_EQ(context.held_device_bytes(), 0u);
+    EXPECT_GE(context.peak_device_bytes(), 1u << 20);
+}
+
 TEST(CommandStream, UploadReadbackRoundTrip) {
     const Context& context = shared_context();
     std::vector<uint32_t> data(10007);

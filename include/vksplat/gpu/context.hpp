@@ -124,6 +124,15 @@ public:
     // ContextOptions::pipeline_statistics was set and the driver offers them.
     std::vector<PipelineStatistics> pipeline_statistics() const;
 
+    // Device memory of the buffers vksplat holds on this context now (MemoryKind::device, as
+    // allocated: sizes rounded up to the driver's alignment), and the most it has held since the
+    // context was made or since the last reset_peak_device_bytes(). Transients count: a buffer that
+    // lives for one pass raises the peak as much as one that lives for the whole run.
+    uint64_t held_device_bytes() const;
+    uint64_t peak_device_bytes() const;
+    // Starts the peak over from what is held now (to measure one job of several on a context).
+    void reset_peak_device_bytes() const;
+
     struct Impl;
     Impl& impl() const { return *impl_; }
 

@@ -229,8 +229,10 @@ public:
     size_t size() const;
     // The current parameters (read back from the device).
     GaussianCloud cloud() const;
-    // Device memory its buffers hold (scene, gradients, moments, frame, loss).
+    // Device memory its buffers hold now (scene, gradients, moments, frame, loss). A step's and
+    // densification's transients are not in it: the context's peak_device_bytes() has them.
     uint64_t device_bytes() const;
+    const gpu::Context& context() const;
 
     // Writes parameters, moments, densification sums, counters and options.checkpoint_owner
     // through io::write_file_atomically, so an interrupted write leaves the previous checkpoint

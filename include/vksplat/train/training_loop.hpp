@@ -56,6 +56,9 @@ struct LoopResult {
     double strategy_seconds = 0;        // of which densification and opacity resets
     double gpu_ms_per_iteration = 0;    // median GPU time of a step (Vulkan timestamps)
     std::vector<StageTiming> stages;    // median GPU time of each pass, in recording order
+    // The most device memory vksplat held on the trainer's context while the loop ran
+    // (gpu::Context::peak_device_bytes, which the loop starts over): the transients of
+    // densification and of snapshots' renders included, and whatever else ran on the context then.
     uint64_t peak_device_bytes = 0;
 };
 
