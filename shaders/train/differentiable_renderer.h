@@ -10,6 +10,7 @@
 #include "shaders/common/buffers.h"
 #include "shaders/render/footprint.h"
 #include "shaders/render/frame.h"
+#include "shaders/train/adam_step.h"
 #include "shaders/train/parameter_layout.h"
 #ifdef __cplusplus
 #include "shaders/render/blend.h"  // BlendTrainPush (GLSL: blend_train.comp includes it with its flags)
@@ -74,11 +75,14 @@ struct PreprocessBackwardPush {
     Floats raw;          // parameters, shaders/train/parameter_layout.h
     Uints tiles_touched; // per Gaussian: 0 where the frame did not draw it
     Floats splat_grads;  // SPLAT_GRAD_STRIDE per Gaussian
-    Floats grads;        // out: gradients of `raw`, same layout
+    Floats grads;        // out, where `adam` is 0: gradients of `raw`, same layout
     Uints counters;      // the frame's counters
     Uints status;        // [0]: STEP_ bits, [STATUS_OVERFLOW_MARK]: the overflow mark
     Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by
     Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
+    // A training step's Adam settings (adam_step.h): the pass steps `raw` by its gradients instead
+    // of writing them to `grads`. 0: write them (gradient checks, Fisher probes).
+    OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
 };
 
 SHADER_NAMESPACE_END

@@ -6,8 +6,13 @@
 // EWA projection with its clamped Jacobian, the 0.3 px low-pass, the conic's inverse, the SH
 // colour with its clamp at 0 and its view direction). Exact derivatives of that forward: where
 // the Jacobian's lateral position is clamped it no longer moves with the position, so it passes
-// no gradient there. Gaussians the frame did not draw get zeros. Any non-finite gradient sets
-// STEP_NONFINITE in the step status, and Adam then skips the whole step.
+// no gradient there. Gaussians the frame did not draw get zeros.
+// In a training step (pc.adam set) each gradient goes straight into Adam (adam.glsl) with the
+// learning rate of its parameter group (the SH block splits into the DC coefficient and the
+// rest), and 3DGS-MCMC's regularisers join it here, as they reach every Gaussian, seen or not;
+// otherwise the gradients are written to pc.grads. A Gaussian with a non-finite gradient sets
+// STEP_NONFINITE in the step status and, in a training step, does not step: its parameters and
+// moments stay as they were, while the others step (the host counts the step as skipped).
 #extension GL_GOOGLE_include_directive : require
 
 #include "shaders/common/buffers.h"
@@ -16,6 +21,7 @@
 #include "shaders/render/sh.glsl"
 #include "shaders/train/differentiable_renderer.h"
 #include "shaders/common/gaussian_shape.glsl"
+#include "shaders/train/adam.glsl"
 
 layout(local_size_x = 256) in;
 
@@ -37,14 +43,12 @@ vec4 rotation_backward(vec4 q, mat3 g) {
 #undef G
 }
 
-// Adds the SH coefficients' gradients (written to `grads`) and returns d L / d direction.
-vec3 sh_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
+// The real SH basis up to `degree` at unit direction `dir`, and each function's derivative in
+// (x, y, z). Unused entries are left unset.
+void sh_basis(vec3 dir, uint degree, out float basis[16], out vec3 dbasis[16]) {
     const float x = dir.x, y = dir.y, z = dir.z;
-    float basis[16];
-    vec3 dbasis[16];  // d basis / d (x, y, z)
     basis[0] = SH_C0;
     dbasis[0] = vec3(0.0);
-    const uint count = (degree + 1u) * (degree + 1u);
     if (degree > 0u) {
         basis[1] = -SH_C1 * y; dbasis[1] = vec3(0.0, -SH_C1, 0.0);
         basis[2] = SH_C1 * z;  dbasis[2] = vec3(0.0, 0.0, SH_C1);
@@ -74,30 +78,72 @@ vec3 sh_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
             }
         }
     }
+}
+
+// d L / d direction of the SH colour at `dir`, the coefficients starting at raw[base].
+vec3 sh_direction_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
+    float basis[16];
+    vec3 dbasis[16];
+    sh_basis(dir, degree, basis, dbasis);
+    const uint count = (degree + 1u) * (degree + 1u);
     vec3 dl_ddir = vec3(0.0);
-    // A constant trip count, unrolled, so that basis and dbasis are indexed by constants and stay
-    // in registers: indexed by a loop variable they would live in local memory.
+    // A constant trip count, unrolled, so that dbasis is indexed by constants and stays in
+    // registers: indexed by a loop variable it would live in local memory.
     [[unroll]] for (uint k = 0u; k < 16u; ++k) {
         if (k >= count) break;
         const uint at = base + 3u * k;
         const vec3 coefficient = vec3(pc.raw.v[at], pc.raw.v[at + 1u], pc.raw.v[at + 2u]);
-        const vec3 grad = basis[k] * dl_dcolor;
-        pc.grads.v[at] = grad.r;
-        pc.grads.v[at + 1u] = grad.g;
-        pc.grads.v[at + 2u] = grad.b;
         dl_ddir += dbasis[k] * dot(coefficient, dl_dcolor);
     }
     return dl_ddir;
 }
 
-void write_zeros(uint n, uint i, uint sh_floats) {
-    for (uint k = 0u; k < 3u; ++k) {
-        pc.grads.v[positions_offset(n) + 3u * i + k] = 0.0;
-        pc.grads.v[log_scales_offset(n) + 3u * i + k] = 0.0;
+bool fused() { return (pc.adam.x | pc.adam.y) != 0u; }
+
+// One parameter float's gradient: into Adam with its group's rate, or written out.
+void take(AdamSettings s, uint at, float g, float learning_rate) {
+    if (fused())
+        adam_step(s, pc.raw, at, g, learning_rate);
+    else
+        pc.grads.v[at] = g;
+}
+
+// The regularisers' gradients (adam_step.h), which only a training step adds.
+float opacity_regularizer(AdamSettings s, float logit) {
+    if (!fused()) return 0.0;
+    const float opacity = 1.0 / (1.0 + exp(-logit));
+    return s.opacity_regularization * opacity * (1.0 - opacity);
+}
+float scale_regularizer(AdamSettings s, float log_scale) { return fused() ? s.scale_regularization * exp(log_scale) : 0.0; }
+
+// The SH coefficients' gradients, basis x d L / d colour: those of bands above the frame's
+// degree are zero.
+void take_sh(AdamSettings s, uint base, uint degree, uint sh_floats, vec3 dir, vec3 dl_dcolor) {
+    float basis[16];
+    vec3 dbasis[16];
+    sh_basis(dir, degree, basis, dbasis);
+    const uint count = (degree + 1u) * (degree + 1u);
+    [[unroll]] for (uint k = 0u; k < 16u; ++k) {
+        if (k >= count) break;
+        const vec3 grad = basis[k] * dl_dcolor;
+        const float rate = k == 0u ? s.lr_sh_dc : s.lr_sh_rest;
+        for (uint c = 0u; c < 3u; ++c) take(s, base + 3u * k + c, grad[c], rate);
     }
-    for (uint k = 0u; k < 4u; ++k) pc.grads.v[rotations_offset(n) + 4u * i + k] = 0.0;
-    pc.grads.v[opacities_offset(n) + i] = 0.0;
-    for (uint k = 0u; k < sh_floats; ++k) pc.grads.v[sh_offset(n) + sh_floats * i + k] = 0.0;
+    for (uint k = 3u * count; k < sh_floats; ++k) take(s, base + k, 0.0, k < 3u ? s.lr_sh_dc : s.lr_sh_rest);
+}
+
+// A Gaussian the frame did not draw: zero gradients (and the regularisers).
+void take_undrawn(AdamSettings s, uint n, uint i, uint sh_floats) {
+    for (uint k = 0u; k < 3u; ++k) {
+        take(s, positions_offset(n) + 3u * i + k, 0.0, s.lr_position);
+        const uint so = log_scales_offset(n) + 3u * i + k;
+        take(s, so, scale_regularizer(s, pc.raw.v[so]), s.lr_scale);
+    }
+    for (uint k = 0u; k < 4u; ++k) take(s, rotations_offset(n) + 4u * i + k, 0.0, s.lr_rotation);
+    const uint oo = opacities_offset(n) + i;
+    take(s, oo, opacity_regularizer(s, pc.raw.v[oo]), s.lr_opacity);
+    for (uint k = 0u; k < sh_floats; ++k)
+        take(s, sh_offset(n) + sh_floats * i + k, 0.0, k < 3u ? s.lr_sh_dc : s.lr_sh_rest);
 }
 
 bool finite(float v) { return !isnan(v) && !isinf(v); }
@@ -118,9 +164,11 @@ void main() {
         }
         return;
     }
+    AdamSettings adam;
+    if (fused()) adam = AdamSettingsBuffer(pc.adam).s;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
         if (pc.tiles_touched.v[i] == 0u) {
-            write_zeros(n, i, sh_floats);
+            take_undrawn(adam, n, i, sh_floats);
             continue;
         }
         const uint sg = i * SPLAT_GRAD_STRIDE;
@@ -152,8 +200,7 @@ void main() {
         const vec3 dir = to_gaussian / distance;
         const vec3 sh_color = eval_sh_in_place(ShSource(Floats(pc.raw), false, false, sho), cam.sh_degree, dir) + COLOR_OFFSET;
         dl_dcolor *= vec3(greaterThanEqual(sh_color, vec3(0.0)));
-        const vec3 dl_ddir = sh_backward(sho, cam.sh_degree, dir, dl_dcolor);
-        for (uint k = 3u * (cam.sh_degree + 1u) * (cam.sh_degree + 1u); k < sh_floats; ++k) pc.grads.v[sho + k] = 0.0;
+        const vec3 dl_ddir = sh_direction_backward(sho, cam.sh_degree, dir, dl_dcolor);
         vec3 dl_dp = (dl_ddir - dir * dot(dir, dl_ddir)) / distance;
 
         // Projection of the mean.
@@ -218,14 +265,16 @@ void main() {
         const vec3 dl_dlog_scale = dl_dscale * scale;
         const float dl_dlogit = dl_dopacity * opacity * (1.0 - opacity);
 
+        const bool all_finite = finite(dl_dp) && finite(dl_dlog_scale) && finite(dl_dq_raw.xyz) &&
+                                finite(dl_dq_raw.w) && finite(dl_dlogit) && finite(dl_dcolor) && finite(dl_ddir);
+        if (!all_finite) atomicOr(pc.status.v[0], STEP_NONFINITE);
+        if (fused() && !all_finite) continue;
         for (uint k = 0u; k < 3u; ++k) {
-            pc.grads.v[po + k] = dl_dp[k];
-            pc.grads.v[so + k] = dl_dlog_scale[k];
+            take(adam, po + k, dl_dp[k], adam.lr_position);
+            take(adam, so + k, dl_dlog_scale[k] + scale_regularizer(adam, pc.raw.v[so + k]), adam.lr_scale);
         }
-        for (uint k = 0u; k < 4u; ++k) pc.grads.v[ro + k] = dl_dq_raw[k];
-        pc.grads.v[oo] = dl_dlogit;
-        if (!finite(dl_dp) || !finite(dl_dlog_scale) || !finite(dl_dq_raw.xyz) || !finite(dl_dq_raw.w) ||
-            !finite(dl_dlogit) || !finite(dl_dcolor) || !finite(dl_ddir))
-            atomicOr(pc.status.v[0], STEP_NONFINITE);
+        for (uint k = 0u; k < 4u; ++k) take(adam, ro + k, dl_dq_raw[k], adam.lr_rotation);
+        take(adam, oo, dl_dlogit + opacity_regularizer(adam, pc.raw.v[oo]), adam.lr_opacity);
+        take_sh(adam, sho, cam.sh_degree, sh_floats, dir, dl_dcolor);
     }
 }

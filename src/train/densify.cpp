@@ -157,10 +157,10 @@ void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) const 
     const auto& context = impl_->context;
     const uint32_t n = scene.layout.count, m = uint32_t(plan.sources.size());
     const ParameterLayout next{m, scene.layout.sh_coefficients};
-    // Gradients and sums start at zero in the new scene, so the old ones go first; then each array
-    // is gathered and the old one freed before the next is made. The most held at once is the old
-    // scene's three arrays and one new one, or the new scene whole: never both scenes.
-    scene.grads = gpu::Buffer();
+    // Sums start at zero in the new scene, so the old ones go first; then each array is gathered
+    // and the old one freed before the next is made. The most held at once is the old scene's
+    // three arrays and one new one, or the new scene whole: never both scenes.
+    scene.grads = gpu::Buffer();  // where kept at all: of the old layout
     scene.densify = gpu::Buffer();
     try {
         // A buffer is never empty, so a plan that keeps nothing, or has no splits, still has one.

@@ -168,7 +168,10 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
 }
 
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
-                                             VkDeviceAddress pixel_grad, bool clear_overflow_mark) {
+                                             VkDeviceAddress pixel_grad, bool clear_overflow_mark,
+                                             VkDeviceAddress adam) {
+    if (!adam && !scene.grads)
+        throw std::logic_error("DifferentiableRenderer::record_backward: no Adam settings and no gradient array");
     auto& f = frame_;
     choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
@@ -208,10 +211,11 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                      .counters = f.counters.address(),
                      .status = status_.address(),
                      .densify = scene.densify.address(),
-                     .means_depth = f.means_depth.address()},
+                     .means_depth = f.means_depth.address(),
+                     .adam = adam},
                     gpu::groups_for(scene.layout.count));
     stream.barrier();
-    stream.mark("preprocess backward");
+    stream.mark(adam ? "preprocess backward + Adam" : "preprocess backward");
 }
 
 void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream, int slot) {
@@ -256,14 +260,16 @@ uint64_t DifferentiableRenderer::device_bytes() const {
 }
 
 void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Camera& camera,
-                                           const RenderSettings& settings, VkDeviceAddress pixel_grad) {
+                                           const RenderSettings& settings, VkDeviceAddress pixel_grad,
+                                           VkDeviceAddress adam) {
     gpu::CommandStream stream(context_);
     for (uint32_t attempts = 1;; ++attempts) {
         const auto params =
             render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false, entry_capacity());
         stream.begin();
         record_forward(stream, scene, params);
-        record_backward(stream, scene, pixel_grad, true);  // nothing is queued: no overflow is pending
+        // Nothing is queued, so no overflow is pending; a frame that overflows steps nothing by Adam.
+        record_backward(stream, scene, pixel_grad, true, adam);
         record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();

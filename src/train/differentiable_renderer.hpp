@@ -87,13 +87,15 @@ public:
     // The forward frame of `scene` with `params` (its gaussian_count, sh_degree and entry
     // capacity filled in by the caller): leaves colour and alpha in color_alpha().
     void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params);
-    // The gradients of every raw parameter into scene.grads, from dL/d rgb per pixel (vec4, at
-    // `pixel_grad`). Zeroes the step status first; preprocess_backward sets its bits. With
+    // The gradients of every raw parameter from dL/d rgb per pixel (vec4, at `pixel_grad`): into
+    // scene.grads, or, given a step's Adam settings (`adam`, shaders/train/adam_step.h), straight
+    // into Adam's step of scene.params and its moments, so that they need no array of their own.
+    // Zeroes the step status first; preprocess_backward sets its bits. With
     // `clear_overflow_mark` it clears the overflow mark too (shaders/train/parameter_layout.h):
     // for a step recorded again after an overflow, with no step queued before it. The blend
     // backward runs in blend_backward_choice().next()'s form.
     void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad,
-                         bool clear_overflow_mark);
+                         bool clear_overflow_mark, VkDeviceAddress adam = 0);
     // After the submission of a record_backward and record_readback into `slot`: its blend
     // backward's time, for the choice of form (none from a frame that overflowed its tile entries).
     void learn_timings(const gpu::CommandStream& stream, int slot = 0);
@@ -106,9 +108,10 @@ public:
     void record_readback(gpu::CommandStream& stream, int slot = 0);
     // Forward and backward of one view to fixed pixel gradients (vec4 per pixel at `pixel_grad`) in
     // one submission, re-run with grown tile entries until the frame fits; waits. For callers that
-    // want the gradients of a loss of their own (train::render_gradients, the tests).
+    // want the gradients of a loss of their own (train::render_gradients, the tests); with `adam`,
+    // one Adam step by them, as record_backward takes it.
     void backpropagate(const TrainableScene& scene, const Camera& camera, const RenderSettings& settings,
-                       VkDeviceAddress pixel_grad);
+                       VkDeviceAddress pixel_grad, VkDeviceAddress adam = 0);
     // The tile entries of the step read back into `slot`; throws GpuError when more than one frame
     // can sort (render::check_entries_sortable).
     uint32_t entries_needed(int slot = 0) const;

@@ -44,7 +44,8 @@ std::vector<std::array<double, 36>> estimate_fisher(const gpu::Context& context,
     std::vector<std::array<double, 36>> fisher(n, std::array<double, 36>{});
     if (n == 0 || cameras.empty()) return fisher;
 
-    const TrainableScene scene = TrainableScene::upload(context, cloud);
+    TrainableScene scene = TrainableScene::upload(context, cloud);
+    scene.allocate_gradients(context);
     // Per pixel, so that no timing is needed to choose a form: the probes' cost is small beside a re-fit.
     DifferentiableRenderer renderer(context, GradientSums::device_default, BlendBackward::per_pixel);
     const gpu::Kernel<shader::train::FisherProbeSignsKernel> signs(context);

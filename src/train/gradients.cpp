@@ -23,7 +23,8 @@ RenderGradients render_gradients(const gpu::Context& context, const GaussianClou
     if (sanitize(checked).changed() > 0)
         throw std::invalid_argument("render_gradients: the cloud needs sanitising first (see sanitize())");
 
-    const TrainableScene scene = TrainableScene::upload(context, cloud);
+    TrainableScene scene = TrainableScene::upload(context, cloud);
+    scene.allocate_gradients(context);
     DifferentiableRenderer renderer(context, sums, form);
     renderer.ensure(scene.layout.count, pixels, tiles);
     std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);

@@ -51,13 +51,15 @@ gpu::Buffer TrainableScene::allocate_array(const gpu::Context& context, const Pa
     return gpu::Buffer(context, std::max<uint64_t>(layout.total(), 1) * sizeof(float), gpu::MemoryKind::device, name);
 }
 
-void TrainableScene::allocate_sums(const gpu::Context& context) {
+void TrainableScene::allocate_gradients(const gpu::Context& context) {
     grads = allocate_array(context, layout, "parameter gradients");
+}
+
+void TrainableScene::allocate_sums(const gpu::Context& context) {
     densify = gpu::Buffer(context, std::max<uint64_t>(layout.count, 1) * kDensifyStride * sizeof(float),
                           gpu::MemoryKind::device, "densification sums");
     gpu::CommandStream stream(context, 0);
     stream.begin();
-    stream.fill(grads, 0);
     stream.fill(densify, 0);
     stream.submit_and_wait();
 }

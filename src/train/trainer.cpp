@@ -17,7 +17,7 @@
 #include "train/loss_passes.hpp"
 #include "train/relocation.hpp"
 #include "train/trainable_scene.hpp"
-#include "shaders/train/adam_step.kernel.hpp"
+#include "shaders/train/adam_step.h"
 #include "shaders/train/position_noise.kernel.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/image.hpp"
@@ -74,7 +74,9 @@ struct Trainer::Impl {
     TrainableScene scene;
     DifferentiableRenderer renderer;
     LossPasses loss;
-    gpu::Kernel<shader::train::AdamStepKernel> adam;
+    // Adam's settings of the step on the device (shaders/train/adam_step.h), written at the start
+    // of each step's commands: the queue runs one step at a time, so one buffer serves both slots.
+    gpu::Buffer adam_settings;
     gpu::Kernel<shader::train::PositionNoiseKernel> noise;
     DensifyPasses densify;
     // Step N is recorded into slots[N % 2] while step N - 1 runs from the other, and queued behind
@@ -100,7 +102,7 @@ struct Trainer::Impl {
           options(o),
           renderer(c, o.deterministic ? GradientSums::fixed_point : GradientSums::device_default, o.blend_backward),
           loss(c),
-          adam(c),
+          adam_settings(c, sizeof(shader::train::AdamSettings), gpu::MemoryKind::device, "Adam settings"),
           noise(c),
           densify(c),
           slots{Slot(c, 0), Slot(c, 1)},
@@ -136,16 +138,11 @@ struct Trainer::Impl {
 
     double other_rates_factor() const { return std::pow(options.rates.others_final, decay_progress()); }
 
-    shader::train::AdamStepPush adam_push(const Slot& slot) const {
+    shader::train::AdamSettings adam_settings_of(const Slot& slot) const {
         const auto& r = options.rates;
         const double t = double(slot.step + 1);
-        return {.params = scene.params.address(),
-                .grads = scene.grads.address(),
-                .first_moment = scene.first_moment.address(),
+        return {.first_moment = scene.first_moment.address(),
                 .second_moment = scene.second_moment.address(),
-                .status = renderer.status_buffer().address(),
-                .count = scene.layout.count,
-                .sh_floats = scene.layout.sh_coefficients * 3,
                 .lr_position = static_cast<float>(slot.position_rate),
                 .lr_scale = static_cast<float>(r.scale * slot.other_rates_factor),
                 .lr_rotation = static_cast<float>(r.rotation * slot.other_rates_factor),
@@ -238,6 +235,8 @@ void Trainer::Impl::record(Slot& slot, bool again) {
     // The step before may still run: it reads the photo and every buffer this one writes.
     stream.barrier_after_everything();
     stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4);
+    const shader::train::AdamSettings adam = adam_settings_of(slot);
+    stream.update(adam_settings, &adam, sizeof(adam));
     renderer.record_forward(stream, scene, params);
     loss.record(stream,
                 {renderer.color_alpha().address(), photo.address(), pixel_grad.address(), uint32_t(camera.width),
@@ -245,12 +244,7 @@ void Trainer::Impl::record(Slot& slot, bool again) {
                 slot.index);
     stream.barrier();
     stream.mark("loss");
-    renderer.record_backward(stream, scene, pixel_grad.address(), again);
-    // One thread per float of the parameter array.
-    stream.dispatch(adam, adam_push(slot),
-                    gpu::groups_for(static_cast<uint32_t>(std::min<uint64_t>(scene.layout.total(), 0xffffffffu))));
-    stream.barrier();
-    stream.mark("adam");
+    renderer.record_backward(stream, scene, pixel_grad.address(), again, adam_settings.address());
     if (options.position_noise > 0) {
         stream.dispatch(noise,
                         {.params = scene.params.address(),

@@ -123,7 +123,8 @@ void BlendBackward::check_lego_view_zero(train::BlendBackward form) {
     for (auto& w : weights) w = std::uniform_real_distribution<float>(-1.0f, 1.0f)(rng);
 
     // The GPU's per-splat gradients.
-    const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud);
+    train::TrainableScene scene = train::TrainableScene::upload(context(), cloud);
+    scene.allocate_gradients(context());
     train::DifferentiableRenderer renderer(context(), train::GradientSums::device_default, form);
     const auto [pixels, tiles] = render::image_extent(camera);
     renderer.ensure(scene.layout.count, pixels, tiles);

@@ -1,0 +1,20 @@
+// Adam (Kingma & Ba), as torch.optim.Adam steps the reference trainer's parameter groups, one
+// parameter float at a time. preprocess_backward.comp calls it where it finds each gradient, so the
+// gradients never go to memory: that saves an array the size of the parameters, and a pass that
+// reads four such arrays and writes three. Every parameter steps every iteration, also with a
+// zero gradient (its moments decay), as torch's dense Adam does.
+#ifndef VKSPLAT_TRAIN_ADAM_GLSL
+#define VKSPLAT_TRAIN_ADAM_GLSL
+
+#include "shaders/train/adam_step.h"
+
+void adam_step(AdamSettings s, Floats params, uint at, float g, float learning_rate) {
+    const float m = s.beta1 * s.first_moment.v[at] + (1.0 - s.beta1) * g;
+    const float v = s.beta2 * s.second_moment.v[at] + (1.0 - s.beta2) * g * g;
+    s.first_moment.v[at] = m;
+    s.second_moment.v[at] = v;
+    const float step = (m / s.bias_correction1) / (sqrt(v / s.bias_correction2) + s.epsilon);
+    params.v[at] -= learning_rate * step;
+}
+
+#endif
