@@ -23,7 +23,7 @@
 #include "shaders/common/gaussian_shape.glsl"
 #include "shaders/train/adam.glsl"
 
-layout(local_size_x = 256) in;
+layout(local_size_x = 256) in;  // shared_dir and shared_dcolor below hold one entry a thread
 
 layout(push_constant) uniform Push { PreprocessBackwardPush pc; };
 
@@ -43,37 +43,53 @@ vec4 rotation_backward(vec4 q, mat3 g) {
 #undef G
 }
 
-// The real SH basis up to `degree` at unit direction `dir`, and each function's derivative in
-// (x, y, z). Unused entries are left unset.
-void sh_basis(vec3 dir, uint degree, out float basis[16], out vec3 dbasis[16]) {
+// Real SH basis function k (0 to 15) at unit direction `dir`, as sh.glsl's colour uses it.
+float sh_basis_function(uint k, vec3 dir) {
     const float x = dir.x, y = dir.y, z = dir.z;
-    basis[0] = SH_C0;
+    const float xx = x * x, yy = y * y, zz = z * z;
+    switch (k) {
+        case 0u: return SH_C0;
+        case 1u: return -SH_C1 * y;
+        case 2u: return SH_C1 * z;
+        case 3u: return -SH_C1 * x;
+        case 4u: return SH_C2[0] * x * y;
+        case 5u: return SH_C2[1] * y * z;
+        case 6u: return SH_C2[2] * (2.0 * zz - xx - yy);
+        case 7u: return SH_C2[3] * x * z;
+        case 8u: return SH_C2[4] * (xx - yy);
+        case 9u: return SH_C3[0] * y * (3.0 * xx - yy);
+        case 10u: return SH_C3[1] * x * y * z;
+        case 11u: return SH_C3[2] * y * (4.0 * zz - xx - yy);
+        case 12u: return SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy);
+        case 13u: return SH_C3[4] * x * (4.0 * zz - xx - yy);
+        case 14u: return SH_C3[5] * z * (xx - yy);
+        default: return SH_C3[6] * x * (xx - 3.0 * yy);
+    }
+}
+
+// d basis / d (x, y, z) of each SH function up to `degree` at unit direction `dir`. Unused
+// entries are left unset.
+void sh_basis_derivatives(vec3 dir, uint degree, out vec3 dbasis[16]) {
+    const float x = dir.x, y = dir.y, z = dir.z;
     dbasis[0] = vec3(0.0);
     if (degree > 0u) {
-        basis[1] = -SH_C1 * y; dbasis[1] = vec3(0.0, -SH_C1, 0.0);
-        basis[2] = SH_C1 * z;  dbasis[2] = vec3(0.0, 0.0, SH_C1);
-        basis[3] = -SH_C1 * x; dbasis[3] = vec3(-SH_C1, 0.0, 0.0);
+        dbasis[1] = vec3(0.0, -SH_C1, 0.0);
+        dbasis[2] = vec3(0.0, 0.0, SH_C1);
+        dbasis[3] = vec3(-SH_C1, 0.0, 0.0);
         if (degree > 1u) {
             const float xx = x * x, yy = y * y, zz = z * z;
-            basis[4] = SH_C2[0] * x * y;              dbasis[4] = SH_C2[0] * vec3(y, x, 0.0);
-            basis[5] = SH_C2[1] * y * z;              dbasis[5] = SH_C2[1] * vec3(0.0, z, y);
-            basis[6] = SH_C2[2] * (2.0 * zz - xx - yy); dbasis[6] = SH_C2[2] * vec3(-2.0 * x, -2.0 * y, 4.0 * z);
-            basis[7] = SH_C2[3] * x * z;              dbasis[7] = SH_C2[3] * vec3(z, 0.0, x);
-            basis[8] = SH_C2[4] * (xx - yy);          dbasis[8] = SH_C2[4] * vec3(2.0 * x, -2.0 * y, 0.0);
+            dbasis[4] = SH_C2[0] * vec3(y, x, 0.0);
+            dbasis[5] = SH_C2[1] * vec3(0.0, z, y);
+            dbasis[6] = SH_C2[2] * vec3(-2.0 * x, -2.0 * y, 4.0 * z);
+            dbasis[7] = SH_C2[3] * vec3(z, 0.0, x);
+            dbasis[8] = SH_C2[4] * vec3(2.0 * x, -2.0 * y, 0.0);
             if (degree > 2u) {
-                basis[9] = SH_C3[0] * y * (3.0 * xx - yy);
                 dbasis[9] = SH_C3[0] * vec3(6.0 * x * y, 3.0 * xx - 3.0 * yy, 0.0);
-                basis[10] = SH_C3[1] * x * y * z;
                 dbasis[10] = SH_C3[1] * vec3(y * z, x * z, x * y);
-                basis[11] = SH_C3[2] * y * (4.0 * zz - xx - yy);
                 dbasis[11] = SH_C3[2] * vec3(-2.0 * x * y, 4.0 * zz - xx - 3.0 * yy, 8.0 * y * z);
-                basis[12] = SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy);
                 dbasis[12] = SH_C3[3] * vec3(-6.0 * x * z, -6.0 * y * z, 6.0 * zz - 3.0 * xx - 3.0 * yy);
-                basis[13] = SH_C3[4] * x * (4.0 * zz - xx - yy);
                 dbasis[13] = SH_C3[4] * vec3(4.0 * zz - 3.0 * xx - yy, -2.0 * x * y, 8.0 * x * z);
-                basis[14] = SH_C3[5] * z * (xx - yy);
                 dbasis[14] = SH_C3[5] * vec3(2.0 * x * z, -2.0 * y * z, xx - yy);
-                basis[15] = SH_C3[6] * x * (xx - 3.0 * yy);
                 dbasis[15] = SH_C3[6] * vec3(3.0 * xx - 3.0 * yy, -6.0 * x * y, 0.0);
             }
         }
@@ -82,9 +98,8 @@ void sh_basis(vec3 dir, uint degree, out float basis[16], out vec3 dbasis[16]) {
 
 // d L / d direction of the SH colour at `dir`, the coefficients starting at raw[base].
 vec3 sh_direction_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
-    float basis[16];
     vec3 dbasis[16];
-    sh_basis(dir, degree, basis, dbasis);
+    sh_basis_derivatives(dir, degree, dbasis);
     const uint count = (degree + 1u) * (degree + 1u);
     vec3 dl_ddir = vec3(0.0);
     // A constant trip count, unrolled, so that dbasis is indexed by constants and stays in
@@ -116,24 +131,8 @@ float opacity_regularizer(AdamSettings s, float logit) {
 }
 float scale_regularizer(AdamSettings s, float log_scale) { return fused() ? s.scale_regularization * exp(log_scale) : 0.0; }
 
-// The SH coefficients' gradients, basis x d L / d colour: those of bands above the frame's
-// degree are zero.
-void take_sh(AdamSettings s, uint base, uint degree, uint sh_floats, vec3 dir, vec3 dl_dcolor) {
-    float basis[16];
-    vec3 dbasis[16];
-    sh_basis(dir, degree, basis, dbasis);
-    const uint count = (degree + 1u) * (degree + 1u);
-    [[unroll]] for (uint k = 0u; k < 16u; ++k) {
-        if (k >= count) break;
-        const vec3 grad = basis[k] * dl_dcolor;
-        const float rate = k == 0u ? s.lr_sh_dc : s.lr_sh_rest;
-        for (uint c = 0u; c < 3u; ++c) take(s, base + 3u * k + c, grad[c], rate);
-    }
-    for (uint k = 3u * count; k < sh_floats; ++k) take(s, base + k, 0.0, k < 3u ? s.lr_sh_dc : s.lr_sh_rest);
-}
-
-// A Gaussian the frame did not draw: zero gradients (and the regularisers).
-void take_undrawn(AdamSettings s, uint n, uint i, uint sh_floats) {
+// A Gaussian the frame did not draw: zero gradients (and the regularisers); its SH as below.
+void take_undrawn(AdamSettings s, uint n, uint i) {
     for (uint k = 0u; k < 3u; ++k) {
         take(s, positions_offset(n) + 3u * i + k, 0.0, s.lr_position);
         const uint so = log_scales_offset(n) + 3u * i + k;
@@ -142,12 +141,141 @@ void take_undrawn(AdamSettings s, uint n, uint i, uint sh_floats) {
     for (uint k = 0u; k < 4u; ++k) take(s, rotations_offset(n) + 4u * i + k, 0.0, s.lr_rotation);
     const uint oo = opacities_offset(n) + i;
     take(s, oo, opacity_regularizer(s, pc.raw.v[oo]), s.lr_opacity);
-    for (uint k = 0u; k < sh_floats; ++k)
-        take(s, sh_offset(n) + sh_floats * i + k, 0.0, k < 3u ? s.lr_sh_dc : s.lr_sh_rest);
 }
 
 bool finite(float v) { return !isnan(v) && !isinf(v); }
 bool finite(vec3 v) { return finite(v.x) && finite(v.y) && finite(v.z); }
+
+// What a Gaussian's SH coefficients' gradients follow from: basis(dir) x d L / d colour.
+struct ShStep {
+    vec3 dir;
+    vec3 dl_dcolor;  // zero for a Gaussian the frame did not draw
+    bool steps;      // false: a training step leaves this Gaussian as it is (a non-finite gradient)
+};
+
+// Gaussian i's gradients but its SH coefficients', taken (into Adam or written); returns what its
+// SH coefficients' need.
+ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
+    ShStep sh = ShStep(vec3(0.0), vec3(0.0), true);
+    if (pc.tiles_touched.v[i] == 0u) {
+        take_undrawn(adam, n, i);
+        return sh;
+    }
+    const uint sg = i * SPLAT_GRAD_STRIDE;
+    const vec2 dl_dmean = vec2(pc.splat_grads.v[sg + SPLAT_GRAD_MEAN], pc.splat_grads.v[sg + SPLAT_GRAD_MEAN + 1u]);
+    // The reference densifies by the gradient of the mean in NDC (pixels = (ndc + 1) size / 2 - 0.5),
+    // so its threshold of 0.0002 holds at any resolution.
+    const uint d = i * DENSIFY_STRIDE;
+    pc.densify.v[d + DENSIFY_GRAD_SUM] += length(dl_dmean * 0.5 * vec2(cam.size.xy));
+    pc.densify.v[d + DENSIFY_VIEWS] += 1.0;
+    pc.densify.v[d + DENSIFY_MAX_RADIUS] = max(pc.densify.v[d + DENSIFY_MAX_RADIUS], pc.means_depth.v[i].w);
+    const vec3 dl_dconic = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_CONIC], pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 1u],
+                                pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 2u]);
+    const float dl_dopacity = pc.splat_grads.v[sg + SPLAT_GRAD_OPACITY];
+    vec3 dl_dcolor = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_COLOR], pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 1u],
+                          pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 2u]);
+
+    const uint po = positions_offset(n) + 3u * i, so = log_scales_offset(n) + 3u * i;
+    const uint ro = rotations_offset(n) + 4u * i, oo = opacities_offset(n) + i;
+    const uint sho = sh_offset(n) + 3u * cam.sh_stride * i;
+    const vec3 p = vec3(pc.raw.v[po], pc.raw.v[po + 1u], pc.raw.v[po + 2u]);
+    const vec3 scale = exp(vec3(pc.raw.v[so], pc.raw.v[so + 1u], pc.raw.v[so + 2u]));
+    const vec4 q_raw = vec4(pc.raw.v[ro], pc.raw.v[ro + 1u], pc.raw.v[ro + 2u], pc.raw.v[ro + 3u]);
+    const float q_length = length(q_raw);
+    const vec4 q = q_raw / q_length;
+    const float opacity = 1.0 / (1.0 + exp(-pc.raw.v[oo]));
+
+    // Colour: SH + 0.5 clamped at 0 passes no gradient where it clamped.
+    const vec3 to_gaussian = p - cam.position.xyz;
+    const float distance = length(to_gaussian);
+    const vec3 dir = to_gaussian / distance;
+    const vec3 sh_color = eval_sh_in_place(ShSource(Floats(pc.raw), false, false, sho), cam.sh_degree, dir) + COLOR_OFFSET;
+    dl_dcolor *= vec3(greaterThanEqual(sh_color, vec3(0.0)));
+    const vec3 dl_ddir = sh_direction_backward(sho, cam.sh_degree, dir, dl_dcolor);
+    sh.dir = dir;
+    sh.dl_dcolor = dl_dcolor;
+    vec3 dl_dp = (dl_ddir - dir * dot(dir, dl_ddir)) / distance;
+
+    // Projection of the mean.
+    const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
+    const vec3 view = world_to_view * p + vec3(cam.view_row0.w, cam.view_row1.w, cam.view_row2.w);
+    const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
+    const float z = view.z, z2 = z * z;
+    vec3 dl_dview = vec3(fx / z * dl_dmean.x, fy / z * dl_dmean.y,
+                         -fx * view.x / z2 * dl_dmean.x - fy * view.y / z2 * dl_dmean.y);
+
+    // Covariance: Sigma = M M^T with M = R S.
+    const mat3 rotation = rotation_matrix(q);
+    const mat3 m = rotation * mat3(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, scale.z);
+    const mat3 sigma = m * transpose(m);
+    // EWA, as preprocess.comp: the lateral positions are clamped before the Jacobian.
+    const float ux = view.x / z, uy = view.y / z;
+    const float ux_c = clamp(ux, -cam.jacobian_limits.x, cam.jacobian_limits.y);
+    const float uy_c = clamp(uy, -cam.jacobian_limits.z, cam.jacobian_limits.w);
+    const mat3 jacobian = transpose(mat3(vec3(fx / z, 0.0, -fx * ux_c / z), vec3(0.0, fy / z, -fy * uy_c / z),
+                                         vec3(0.0)));
+    const mat3 t = jacobian * world_to_view;
+    const mat3 cov = t * sigma * transpose(t);
+    const float a = cov[0][0] + LOW_PASS_FILTER, b = cov[1][0], c = cov[1][1] + LOW_PASS_FILTER;
+    const float det = a * c - b * b;
+    // Conic = inverse of [[a, b], [b, c]]: d L / d cov2 = -C G C with G the conic's gradient
+    // as a symmetric matrix (the off-diagonal scalar appears twice in the power).
+    const mat2 conic = mat2(c, -b, -b, a) / det;
+    const mat2 g_conic = mat2(dl_dconic.x, 0.5 * dl_dconic.y, 0.5 * dl_dconic.y, dl_dconic.z);
+    const mat2 g_cov2 = -(conic * g_conic * conic);
+    mat3 g_cov = mat3(0.0);
+    g_cov[0][0] = g_cov2[0][0];
+    g_cov[0][1] = g_cov2[0][1];
+    g_cov[1][0] = g_cov2[1][0];
+    g_cov[1][1] = g_cov2[1][1];
+    // cov = T Sigma T^T: d/dSigma = T^T G T, d/dT = 2 G T Sigma (G and Sigma symmetric).
+    const mat3 g_sigma = transpose(t) * g_cov * t;
+    const mat3 g_t = 2.0 * g_cov * t * sigma;
+    const mat3 g_jacobian = g_t * transpose(world_to_view);
+    // Jacobian entries (row, column) = g_jacobian[column][row].
+    const float g_j00 = g_jacobian[0][0], g_j11 = g_jacobian[1][1];
+    const float g_j02 = g_jacobian[2][0], g_j12 = g_jacobian[2][1];
+    const bool x_free = ux == ux_c, y_free = uy == uy_c;
+    dl_dview.z += g_j00 * (-fx / z2) + g_j11 * (-fy / z2);
+    // J02 = -fx ux_c / z, with ux_c = x / z where unclamped.
+    dl_dview.z += g_j02 * (fx * ux_c / z2) + g_j12 * (fy * uy_c / z2);
+    if (x_free) {
+        dl_dview.x += g_j02 * (-fx / z2);
+        dl_dview.z += g_j02 * (fx * view.x / (z2 * z));
+    }
+    if (y_free) {
+        dl_dview.y += g_j12 * (-fy / z2);
+        dl_dview.z += g_j12 * (fy * view.y / (z2 * z));
+    }
+    dl_dp += transpose(world_to_view) * dl_dview;
+
+    // Sigma = M M^T: d/dM = 2 G M; M = R diag(s): column k of M is s_k times column k of R.
+    const mat3 g_m = 2.0 * g_sigma * m;
+    const vec3 dl_dscale = vec3(dot(g_m[0], rotation[0]), dot(g_m[1], rotation[1]), dot(g_m[2], rotation[2]));
+    const mat3 g_rotation = mat3(g_m[0] * scale.x, g_m[1] * scale.y, g_m[2] * scale.z);
+    const vec4 dl_dq = rotation_backward(q, g_rotation);
+    const vec4 dl_dq_raw = (dl_dq - q * dot(q, dl_dq)) / q_length;
+    const vec3 dl_dlog_scale = dl_dscale * scale;
+    const float dl_dlogit = dl_dopacity * opacity * (1.0 - opacity);
+
+    const bool all_finite = finite(dl_dp) && finite(dl_dlog_scale) && finite(dl_dq_raw.xyz) &&
+                            finite(dl_dq_raw.w) && finite(dl_dlogit) && finite(dl_dcolor) && finite(dl_ddir);
+    if (!all_finite) atomicOr(pc.status.v[0], STEP_NONFINITE);
+    if (fused() && !all_finite) {
+        sh.steps = false;
+        return sh;
+    }
+    for (uint k = 0u; k < 3u; ++k) {
+        take(adam, po + k, dl_dp[k], adam.lr_position);
+        take(adam, so + k, dl_dlog_scale[k] + scale_regularizer(adam, pc.raw.v[so + k]), adam.lr_scale);
+    }
+    for (uint k = 0u; k < 4u; ++k) take(adam, ro + k, dl_dq_raw[k], adam.lr_rotation);
+    take(adam, oo, dl_dlogit + opacity_regularizer(adam, pc.raw.v[oo]), adam.lr_opacity);
+    return sh;
+}
+
+shared vec4 shared_dir[256];     // w: 1 where the Gaussian's SH steps
+shared vec4 shared_dcolor[256];
 
 void main() {
     const CameraParams cam = pc.camera.c;
@@ -166,115 +294,28 @@ void main() {
     }
     AdamSettings adam;
     if (fused()) adam = AdamSettingsBuffer(pc.adam).s;
-    for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
-        if (pc.tiles_touched.v[i] == 0u) {
-            take_undrawn(adam, n, i, sh_floats);
-            continue;
+    const uint group = gl_WorkGroupSize.x, local = gl_LocalInvocationID.x;
+    const uint used = (cam.sh_degree + 1u) * (cam.sh_degree + 1u);  // coefficients the frame used
+    // Each workgroup takes 256 Gaussians at a time: one thread each for everything but the SH,
+    // then the SH coefficients of all 256 (contiguous: [Gaussian][coefficient][rgb]) one float a
+    // thread, so that the moments and parameters are read and written in whole cache lines. Per
+    // Gaussian they were 48 floats apart between neighbouring threads, which made the fused step
+    // cost more than the separate Adam pass it replaced.
+    for (uint first = gl_WorkGroupID.x * group; first < n; first += gl_NumWorkGroups.x * group) {
+        const uint i = first + local;
+        ShStep sh = ShStep(vec3(0.0), vec3(0.0), false);
+        if (i < n) sh = backward(adam, cam, n, i);
+        shared_dir[local] = vec4(sh.dir, sh.steps ? 1.0 : 0.0);
+        shared_dcolor[local] = vec4(sh.dl_dcolor, 0.0);
+        barrier();
+        const uint floats = min(group, n - first) * sh_floats, base = sh_offset(n) + sh_floats * first;
+        for (uint j = local; j < floats; j += group) {
+            const uint g = j / sh_floats, within = j - g * sh_floats, k = within / 3u;
+            const vec4 dir = shared_dir[g];
+            if (dir.w == 0.0) continue;
+            const float grad = k < used ? sh_basis_function(k, dir.xyz) * shared_dcolor[g][within - 3u * k] : 0.0;
+            take(adam, base + j, grad, within < 3u ? adam.lr_sh_dc : adam.lr_sh_rest);
         }
-        const uint sg = i * SPLAT_GRAD_STRIDE;
-        const vec2 dl_dmean = vec2(pc.splat_grads.v[sg + SPLAT_GRAD_MEAN], pc.splat_grads.v[sg + SPLAT_GRAD_MEAN + 1u]);
-        // The reference densifies by the gradient of the mean in NDC (pixels = (ndc + 1) size / 2 - 0.5),
-        // so its threshold of 0.0002 holds at any resolution.
-        const uint d = i * DENSIFY_STRIDE;
-        pc.densify.v[d + DENSIFY_GRAD_SUM] += length(dl_dmean * 0.5 * vec2(cam.size.xy));
-        pc.densify.v[d + DENSIFY_VIEWS] += 1.0;
-        pc.densify.v[d + DENSIFY_MAX_RADIUS] = max(pc.densify.v[d + DENSIFY_MAX_RADIUS], pc.means_depth.v[i].w);
-        const vec3 dl_dconic = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_CONIC], pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 1u],
-                                    pc.splat_grads.v[sg + SPLAT_GRAD_CONIC + 2u]);
-        const float dl_dopacity = pc.splat_grads.v[sg + SPLAT_GRAD_OPACITY];
-        vec3 dl_dcolor = vec3(pc.splat_grads.v[sg + SPLAT_GRAD_COLOR], pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 1u],
-                              pc.splat_grads.v[sg + SPLAT_GRAD_COLOR + 2u]);
-
-        const uint po = positions_offset(n) + 3u * i, so = log_scales_offset(n) + 3u * i;
-        const uint ro = rotations_offset(n) + 4u * i, oo = opacities_offset(n) + i, sho = sh_offset(n) + sh_floats * i;
-        const vec3 p = vec3(pc.raw.v[po], pc.raw.v[po + 1u], pc.raw.v[po + 2u]);
-        const vec3 scale = exp(vec3(pc.raw.v[so], pc.raw.v[so + 1u], pc.raw.v[so + 2u]));
-        const vec4 q_raw = vec4(pc.raw.v[ro], pc.raw.v[ro + 1u], pc.raw.v[ro + 2u], pc.raw.v[ro + 3u]);
-        const float q_length = length(q_raw);
-        const vec4 q = q_raw / q_length;
-        const float opacity = 1.0 / (1.0 + exp(-pc.raw.v[oo]));
-
-        // Colour: SH + 0.5 clamped at 0 passes no gradient where it clamped.
-        const vec3 to_gaussian = p - cam.position.xyz;
-        const float distance = length(to_gaussian);
-        const vec3 dir = to_gaussian / distance;
-        const vec3 sh_color = eval_sh_in_place(ShSource(Floats(pc.raw), false, false, sho), cam.sh_degree, dir) + COLOR_OFFSET;
-        dl_dcolor *= vec3(greaterThanEqual(sh_color, vec3(0.0)));
-        const vec3 dl_ddir = sh_direction_backward(sho, cam.sh_degree, dir, dl_dcolor);
-        vec3 dl_dp = (dl_ddir - dir * dot(dir, dl_ddir)) / distance;
-
-        // Projection of the mean.
-        const mat3 world_to_view = transpose(mat3(cam.view_row0.xyz, cam.view_row1.xyz, cam.view_row2.xyz));
-        const vec3 view = world_to_view * p + vec3(cam.view_row0.w, cam.view_row1.w, cam.view_row2.w);
-        const float fx = cam.focal_principal.x, fy = cam.focal_principal.y;
-        const float z = view.z, z2 = z * z;
-        vec3 dl_dview = vec3(fx / z * dl_dmean.x, fy / z * dl_dmean.y,
-                             -fx * view.x / z2 * dl_dmean.x - fy * view.y / z2 * dl_dmean.y);
-
-        // Covariance: Sigma = M M^T with M = R S.
-        const mat3 rotation = rotation_matrix(q);
-        const mat3 m = rotation * mat3(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, scale.z);
-        const mat3 sigma = m * transpose(m);
-        // EWA, as preprocess.comp: the lateral positions are clamped before the Jacobian.
-        const float ux = view.x / z, uy = view.y / z;
-        const float ux_c = clamp(ux, -cam.jacobian_limits.x, cam.jacobian_limits.y);
-        const float uy_c = clamp(uy, -cam.jacobian_limits.z, cam.jacobian_limits.w);
-        const mat3 jacobian = transpose(mat3(vec3(fx / z, 0.0, -fx * ux_c / z), vec3(0.0, fy / z, -fy * uy_c / z),
-                                             vec3(0.0)));
-        const mat3 t = jacobian * world_to_view;
-        const mat3 cov = t * sigma * transpose(t);
-        const float a = cov[0][0] + LOW_PASS_FILTER, b = cov[1][0], c = cov[1][1] + LOW_PASS_FILTER;
-        const float det = a * c - b * b;
-        // Conic = inverse of [[a, b], [b, c]]: d L / d cov2 = -C G C with G the conic's gradient
-        // as a symmetric matrix (the off-diagonal scalar appears twice in the power).
-        const mat2 conic = mat2(c, -b, -b, a) / det;
-        const mat2 g_conic = mat2(dl_dconic.x, 0.5 * dl_dconic.y, 0.5 * dl_dconic.y, dl_dconic.z);
-        const mat2 g_cov2 = -(conic * g_conic * conic);
-        mat3 g_cov = mat3(0.0);
-        g_cov[0][0] = g_cov2[0][0];
-        g_cov[0][1] = g_cov2[0][1];
-        g_cov[1][0] = g_cov2[1][0];
-        g_cov[1][1] = g_cov2[1][1];
-        // cov = T Sigma T^T: d/dSigma = T^T G T, d/dT = 2 G T Sigma (G and Sigma symmetric).
-        const mat3 g_sigma = transpose(t) * g_cov * t;
-        const mat3 g_t = 2.0 * g_cov * t * sigma;
-        const mat3 g_jacobian = g_t * transpose(world_to_view);
-        // Jacobian entries (row, column) = g_jacobian[column][row].
-        const float g_j00 = g_jacobian[0][0], g_j11 = g_jacobian[1][1];
-        const float g_j02 = g_jacobian[2][0], g_j12 = g_jacobian[2][1];
-        const bool x_free = ux == ux_c, y_free = uy == uy_c;
-        dl_dview.z += g_j00 * (-fx / z2) + g_j11 * (-fy / z2);
-        // J02 = -fx ux_c / z, with ux_c = x / z where unclamped.
-        dl_dview.z += g_j02 * (fx * ux_c / z2) + g_j12 * (fy * uy_c / z2);
-        if (x_free) {
-            dl_dview.x += g_j02 * (-fx / z2);
-            dl_dview.z += g_j02 * (fx * view.x / (z2 * z));
-        }
-        if (y_free) {
-            dl_dview.y += g_j12 * (-fy / z2);
-            dl_dview.z += g_j12 * (fy * view.y / (z2 * z));
-        }
-        dl_dp += transpose(world_to_view) * dl_dview;
-
-        // Sigma = M M^T: d/dM = 2 G M; M = R diag(s): column k of M is s_k times column k of R.
-        const mat3 g_m = 2.0 * g_sigma * m;
-        const vec3 dl_dscale = vec3(dot(g_m[0], rotation[0]), dot(g_m[1], rotation[1]), dot(g_m[2], rotation[2]));
-        const mat3 g_rotation = mat3(g_m[0] * scale.x, g_m[1] * scale.y, g_m[2] * scale.z);
-        const vec4 dl_dq = rotation_backward(q, g_rotation);
-        const vec4 dl_dq_raw = (dl_dq - q * dot(q, dl_dq)) / q_length;
-        const vec3 dl_dlog_scale = dl_dscale * scale;
-        const float dl_dlogit = dl_dopacity * opacity * (1.0 - opacity);
-
-        const bool all_finite = finite(dl_dp) && finite(dl_dlog_scale) && finite(dl_dq_raw.xyz) &&
-                                finite(dl_dq_raw.w) && finite(dl_dlogit) && finite(dl_dcolor) && finite(dl_ddir);
-        if (!all_finite) atomicOr(pc.status.v[0], STEP_NONFINITE);
-        if (fused() && !all_finite) continue;
-        for (uint k = 0u; k < 3u; ++k) {
-            take(adam, po + k, dl_dp[k], adam.lr_position);
-            take(adam, so + k, dl_dlog_scale[k] + scale_regularizer(adam, pc.raw.v[so + k]), adam.lr_scale);
-        }
-        for (uint k = 0u; k < 4u; ++k) take(adam, ro + k, dl_dq_raw[k], adam.lr_rotation);
-        take(adam, oo, dl_dlogit + opacity_regularizer(adam, pc.raw.v[oo]), adam.lr_opacity);
-        take_sh(adam, sho, cam.sh_degree, sh_floats, dir, dl_dcolor);
+        barrier();
     }
 }

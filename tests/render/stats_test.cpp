@@ -51,8 +51,9 @@ TEST_F(Stats, MatchTheReference) {
         // Which pixel holds the centre may differ where float and double round a centre that
         // lies on a pixel border; elsewhere the centre weights agree.
         const auto near_border = [](double x) { return std::abs(x - std::floor(x) - 0.5) < 1e-3; };
-        if (!near_border(ref.screen_x[i]) && !near_border(ref.screen_y[i]))
+        if (!near_border(ref.screen_x[i]) && !near_border(ref.screen_y[i])) {
             EXPECT_NEAR(gpu.centre_weight[i], ref.centre_weight[i], 1e-5) << i;
+        }
     }
     EXPECT_GT(visible, 300u);
     EXPECT_GE(double(same_pixels), 0.98 * double(visible));
