@@ -81,6 +81,9 @@ int main(int argc, char** argv) {
                    "fastest (time both forms on the first steps, keep the faster), per-pixel or per-splat")
         ->check(CLI::IsMember({"fastest", "per-pixel", "per-splat"}));
     app.add_option("--device", device);
+    bool pipeline_stats = false;
+    app.add_flag("--pipeline-stats", pipeline_stats,
+                 "print what the driver says of the training passes' pipelines (registers, shared memory, ...)");
     CLI11_PARSE(app, argc, argv);
     try {
         recipe.densify.max_gaussians = max_gaussians;
@@ -89,7 +92,7 @@ int main(int argc, char** argv) {
         recipe.budget_score = prune::parse_score_method(budget_score);
         if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");
         recipe.budget.ranking = ranking == "sum" ? train::DensifyRanking::gradient_sum : train::DensifyRanking::mean_gradient;
-        gpu::Context context(gpu::ContextOptions{device, false, 0});
+        gpu::Context context(gpu::ContextOptions{device, false, 0, pipeline_stats});
         const jobs::TrainingData data = jobs::load_training_data(data_dir, recipe, 1.0, 0);
         for (const auto& w : data.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
         std::printf("%s (%s): %zu cameras (%zu train, %zu test), %zu starting points, on %s\n", data_dir.c_str(),
@@ -153,6 +156,11 @@ int main(int argc, char** argv) {
         if (recipe.strategy == jobs::DensifyStrategy::mcmc)
             std::printf("mcmc: %zu relocated, %zu added\n", result.mcmc_events.relocated, result.mcmc_events.added);
         std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);
+        for (const auto& pipeline : context.pipeline_statistics()) {
+            std::printf("pipeline %s:", pipeline.pipeline.c_str());
+            for (const auto& [name, value] : pipeline.values) std::printf("  %s %s", name.c_str(), value.c_str());
+            std::printf("\n");
+        }
         return 0;
     } catch (const std::exception& e) {
         std::fprintf(stderr, "error: %s\n", e.what());

@@ -3,18 +3,30 @@
 // gradients never go to memory: that saves an array the size of the parameters, and a pass that
 // reads four such arrays and writes three. Every parameter steps every iteration, also with a
 // zero gradient (its moments decay), as torch's dense Adam does.
+// A step is split into loading a float's state and storing its update so that a thread can load
+// several floats' states before it stores any: the compiler may not move a load above a store
+// through another buffer reference (they might alias), so one float at a time would wait out a
+// memory round trip per float.
 #ifndef VKSPLAT_TRAIN_ADAM_GLSL
 #define VKSPLAT_TRAIN_ADAM_GLSL
 
 #include "shaders/train/adam_step.h"
 
-void adam_step(AdamSettings s, Floats params, uint at, float g, float learning_rate) {
-    const float m = s.beta1 * s.first_moment.v[at] + (1.0 - s.beta1) * g;
-    const float v = s.beta2 * s.second_moment.v[at] + (1.0 - s.beta2) * g * g;
+struct AdamState {
+    float param, m, v;
+};
+
+AdamState adam_load(AdamSettings s, Floats params, uint at) {
+    return AdamState(params.v[at], s.first_moment.v[at], s.second_moment.v[at]);
+}
+
+void adam_store(AdamSettings s, Floats params, uint at, AdamState state, float g, float learning_rate) {
+    const float m = s.beta1 * state.m + (1.0 - s.beta1) * g;
+    const float v = s.beta2 * state.v + (1.0 - s.beta2) * g * g;
     s.first_moment.v[at] = m;
     s.second_moment.v[at] = v;
     const float step = (m / s.bias_correction1) / (sqrt(v / s.bias_correction2) + s.epsilon);
-    params.v[at] -= learning_rate * step;
+    params.v[at] = state.param - learning_rate * step;
 }
 
 #endif

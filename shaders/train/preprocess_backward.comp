@@ -115,32 +115,37 @@ vec3 sh_direction_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
 
 bool fused() { return (pc.adam.x | pc.adam.y) != 0u; }
 
-// One parameter float's gradient: into Adam with its group's rate, or written out.
-void take(AdamSettings s, uint at, float g, float learning_rate) {
-    if (fused())
-        adam_step(s, pc.raw, at, g, learning_rate);
-    else
-        pc.grads.v[at] = g;
+// Where float k (0 to 10) of Gaussian i's geometry sits: position (3), log-scale (3), quaternion
+// (4), opacity logit (1).
+uint geometry_at(uint n, uint i, uint k) {
+    if (k < 3u) return positions_offset(n) + 3u * i + k;
+    if (k < 6u) return log_scales_offset(n) + 3u * i + k - 3u;
+    if (k < 10u) return rotations_offset(n) + 4u * i + k - 6u;
+    return opacities_offset(n) + i;
 }
 
-// The regularisers' gradients (adam_step.h), which only a training step adds.
-float opacity_regularizer(AdamSettings s, float logit) {
-    if (!fused()) return 0.0;
-    const float opacity = 1.0 / (1.0 + exp(-logit));
-    return s.opacity_regularization * opacity * (1.0 - opacity);
+float geometry_rate(AdamSettings s, uint k) {
+    return k < 3u ? s.lr_position : k < 6u ? s.lr_scale : k < 10u ? s.lr_rotation : s.lr_opacity;
 }
-float scale_regularizer(AdamSettings s, float log_scale) { return fused() ? s.scale_regularization * exp(log_scale) : 0.0; }
 
-// A Gaussian the frame did not draw: zero gradients (and the regularisers); its SH as below.
-void take_undrawn(AdamSettings s, uint n, uint i) {
-    for (uint k = 0u; k < 3u; ++k) {
-        take(s, positions_offset(n) + 3u * i + k, 0.0, s.lr_position);
-        const uint so = log_scales_offset(n) + 3u * i + k;
-        take(s, so, scale_regularizer(s, pc.raw.v[so]), s.lr_scale);
+// Gaussian i's geometry gradients `g`: into Adam, with the regularisers (adam_step.h), which only
+// a training step adds, or written out. Every state is loaded before any is stored (adam.glsl).
+void take_geometry(AdamSettings s, uint n, uint i, float g[11]) {
+    if (!fused()) {
+        [[unroll]] for (uint k = 0u; k < 11u; ++k) pc.grads.v[geometry_at(n, i, k)] = g[k];
+        return;
     }
-    for (uint k = 0u; k < 4u; ++k) take(s, rotations_offset(n) + 4u * i + k, 0.0, s.lr_rotation);
-    const uint oo = opacities_offset(n) + i;
-    take(s, oo, opacity_regularizer(s, pc.raw.v[oo]), s.lr_opacity);
+    AdamState state[11];
+    [[unroll]] for (uint k = 0u; k < 11u; ++k) state[k] = adam_load(s, pc.raw, geometry_at(n, i, k));
+    [[unroll]] for (uint k = 0u; k < 11u; ++k) {
+        float gradient = g[k];
+        if (k >= 3u && k < 6u) gradient += s.scale_regularization * exp(state[k].param);
+        if (k == 10u) {
+            const float opacity = 1.0 / (1.0 + exp(-state[k].param));
+            gradient += s.opacity_regularization * opacity * (1.0 - opacity);
+        }
+        adam_store(s, pc.raw, geometry_at(n, i, k), state[k], gradient, geometry_rate(s, k));
+    }
 }
 
 bool finite(float v) { return !isnan(v) && !isinf(v); }
@@ -158,7 +163,8 @@ struct ShStep {
 ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
     ShStep sh = ShStep(vec3(0.0), vec3(0.0), true);
     if (pc.tiles_touched.v[i] == 0u) {
-        take_undrawn(adam, n, i);
+        float zeros[11] = float[11](0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0);
+        take_geometry(adam, n, i, zeros);
         return sh;
     }
     const uint sg = i * SPLAT_GRAD_STRIDE;
@@ -265,12 +271,9 @@ ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
         sh.steps = false;
         return sh;
     }
-    for (uint k = 0u; k < 3u; ++k) {
-        take(adam, po + k, dl_dp[k], adam.lr_position);
-        take(adam, so + k, dl_dlog_scale[k] + scale_regularizer(adam, pc.raw.v[so + k]), adam.lr_scale);
-    }
-    for (uint k = 0u; k < 4u; ++k) take(adam, ro + k, dl_dq_raw[k], adam.lr_rotation);
-    take(adam, oo, dl_dlogit + opacity_regularizer(adam, pc.raw.v[oo]), adam.lr_opacity);
+    take_geometry(adam, n, i,
+                  float[11](dl_dp.x, dl_dp.y, dl_dp.z, dl_dlog_scale.x, dl_dlog_scale.y, dl_dlog_scale.z, dl_dq_raw.x,
+                            dl_dq_raw.y, dl_dq_raw.z, dl_dq_raw.w, dl_dlogit));
     return sh;
 }
 
@@ -309,12 +312,27 @@ void main() {
         shared_dcolor[local] = vec4(sh.dl_dcolor, 0.0);
         barrier();
         const uint floats = min(group, n - first) * sh_floats, base = sh_offset(n) + sh_floats * first;
-        for (uint j = local; j < floats; j += group) {
-            const uint g = j / sh_floats, within = j - g * sh_floats, k = within / 3u;
-            const vec4 dir = shared_dir[g];
-            if (dir.w == 0.0) continue;
-            const float grad = k < used ? sh_basis_function(k, dir.xyz) * shared_dcolor[g][within - 3u * k] : 0.0;
-            take(adam, base + j, grad, within < 3u ? adam.lr_sh_dc : adam.lr_sh_rest);
+        // Four floats a thread at a time, loaded before any is stored (adam.glsl).
+        for (uint j0 = local; j0 < floats; j0 += 4u * group) {
+            float grad[4];
+            bool steps[4];
+            AdamState state[4];
+            [[unroll]] for (uint u = 0u; u < 4u; ++u) {
+                const uint j = j0 + u * group;
+                const uint g = min(j, floats - 1u) / sh_floats, within = j - g * sh_floats, k = within / 3u;
+                const vec4 dir = shared_dir[g];
+                steps[u] = j < floats && dir.w != 0.0;
+                grad[u] = k < used ? sh_basis_function(k, dir.xyz) * shared_dcolor[g][within - 3u * k] : 0.0;
+                if (steps[u] && fused()) state[u] = adam_load(adam, pc.raw, base + j);
+            }
+            [[unroll]] for (uint u = 0u; u < 4u; ++u) {
+                const uint j = j0 + u * group;
+                if (!steps[u]) continue;
+                if (fused())
+                    adam_store(adam, pc.raw, base + j, state[u], grad[u], j % sh_floats < 3u ? adam.lr_sh_dc : adam.lr_sh_rest);
+                else
+                    pc.grads.v[base + j] = grad[u];
+            }
         }
         barrier();
     }
