@@ -67,48 +67,41 @@ float sh_basis_function(uint k, vec3 dir) {
     }
 }
 
-// d basis / d (x, y, z) of each SH function up to `degree` at unit direction `dir`. Unused
-// entries are left unset.
-void sh_basis_derivatives(vec3 dir, uint degree, out vec3 dbasis[16]) {
+// d (basis function k) / d (x, y, z) at unit direction `dir`, for k from 1 to 15 (the constant
+// band has none).
+vec3 sh_basis_derivative(uint k, vec3 dir) {
     const float x = dir.x, y = dir.y, z = dir.z;
-    dbasis[0] = vec3(0.0);
-    if (degree > 0u) {
-        dbasis[1] = vec3(0.0, -SH_C1, 0.0);
-        dbasis[2] = vec3(0.0, 0.0, SH_C1);
-        dbasis[3] = vec3(-SH_C1, 0.0, 0.0);
-        if (degree > 1u) {
-            const float xx = x * x, yy = y * y, zz = z * z;
-            dbasis[4] = SH_C2[0] * vec3(y, x, 0.0);
-            dbasis[5] = SH_C2[1] * vec3(0.0, z, y);
-            dbasis[6] = SH_C2[2] * vec3(-2.0 * x, -2.0 * y, 4.0 * z);
-            dbasis[7] = SH_C2[3] * vec3(z, 0.0, x);
-            dbasis[8] = SH_C2[4] * vec3(2.0 * x, -2.0 * y, 0.0);
-            if (degree > 2u) {
-                dbasis[9] = SH_C3[0] * vec3(6.0 * x * y, 3.0 * xx - 3.0 * yy, 0.0);
-                dbasis[10] = SH_C3[1] * vec3(y * z, x * z, x * y);
-                dbasis[11] = SH_C3[2] * vec3(-2.0 * x * y, 4.0 * zz - xx - 3.0 * yy, 8.0 * y * z);
-                dbasis[12] = SH_C3[3] * vec3(-6.0 * x * z, -6.0 * y * z, 6.0 * zz - 3.0 * xx - 3.0 * yy);
-                dbasis[13] = SH_C3[4] * vec3(4.0 * zz - 3.0 * xx - yy, -2.0 * x * y, 8.0 * x * z);
-                dbasis[14] = SH_C3[5] * vec3(2.0 * x * z, -2.0 * y * z, xx - yy);
-                dbasis[15] = SH_C3[6] * vec3(3.0 * xx - 3.0 * yy, -6.0 * x * y, 0.0);
-            }
-        }
+    const float xx = x * x, yy = y * y, zz = z * z;
+    switch (k) {
+        case 1u: return vec3(0.0, -SH_C1, 0.0);
+        case 2u: return vec3(0.0, 0.0, SH_C1);
+        case 3u: return vec3(-SH_C1, 0.0, 0.0);
+        case 4u: return SH_C2[0] * vec3(y, x, 0.0);
+        case 5u: return SH_C2[1] * vec3(0.0, z, y);
+        case 6u: return SH_C2[2] * vec3(-2.0 * x, -2.0 * y, 4.0 * z);
+        case 7u: return SH_C2[3] * vec3(z, 0.0, x);
+        case 8u: return SH_C2[4] * vec3(2.0 * x, -2.0 * y, 0.0);
+        case 9u: return SH_C3[0] * vec3(6.0 * x * y, 3.0 * xx - 3.0 * yy, 0.0);
+        case 10u: return SH_C3[1] * vec3(y * z, x * z, x * y);
+        case 11u: return SH_C3[2] * vec3(-2.0 * x * y, 4.0 * zz - xx - 3.0 * yy, 8.0 * y * z);
+        case 12u: return SH_C3[3] * vec3(-6.0 * x * z, -6.0 * y * z, 6.0 * zz - 3.0 * xx - 3.0 * yy);
+        case 13u: return SH_C3[4] * vec3(4.0 * zz - 3.0 * xx - yy, -2.0 * x * y, 8.0 * x * z);
+        case 14u: return SH_C3[5] * vec3(2.0 * x * z, -2.0 * y * z, xx - yy);
+        default: return SH_C3[6] * vec3(3.0 * xx - 3.0 * yy, -6.0 * x * y, 0.0);
     }
 }
 
-// d L / d direction of the SH colour at `dir`, the coefficients starting at raw[base].
+// d L / d direction of the SH colour at `dir`, the coefficients starting at raw[base]. A loop,
+// not unrolled, over a coefficient index every thread shares (the frame's degree): no divergence,
+// and none of the 16 derivatives held at once. Unrolled into an array they cost 48 registers of a
+// kernel that then held 238 (H200), one workgroup to a multiprocessor.
 vec3 sh_direction_backward(uint base, uint degree, vec3 dir, vec3 dl_dcolor) {
-    vec3 dbasis[16];
-    sh_basis_derivatives(dir, degree, dbasis);
     const uint count = (degree + 1u) * (degree + 1u);
     vec3 dl_ddir = vec3(0.0);
-    // A constant trip count, unrolled, so that dbasis is indexed by constants and stays in
-    // registers: indexed by a loop variable it would live in local memory.
-    [[unroll]] for (uint k = 0u; k < 16u; ++k) {
-        if (k >= count) break;
+    [[dont_unroll]] for (uint k = 1u; k < count; ++k) {
         const uint at = base + 3u * k;
         const vec3 coefficient = vec3(pc.raw.v[at], pc.raw.v[at + 1u], pc.raw.v[at + 2u]);
-        dl_ddir += dbasis[k] * dot(coefficient, dl_dcolor);
+        dl_ddir += sh_basis_derivative(k, dir) * dot(coefficient, dl_dcolor);
     }
     return dl_ddir;
 }
