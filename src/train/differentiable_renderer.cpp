@@ -119,7 +119,7 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
     frame_.ensure_gaussians(gaussians);
     frame_.ensure_image(pixels, tiles);
     if (frame_.entry_capacity == 0)
-        frame_.ensure_entries(std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
+        frame_.ensure_entries(std::max(std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian, released_entries_));
     if (gaussians > capacity_) {
         render_params_ = gpu::Buffer();
         render_params_ = gpu::Buffer(context_, uint64_t(gaussians) * 48, gpu::MemoryKind::device, "activated parameters");
@@ -140,6 +140,15 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         last_ = gpu::Buffer(context_, uint64_t(pixels) * 4, gpu::MemoryKind::device, "last blended positions");
         pixel_capacity_ = pixels;
     }
+}
+
+void DifferentiableRenderer::release_scene_sized() {
+    released_entries_ = std::max(released_entries_, frame_.entry_capacity);
+    frame_.release_scene_sized();
+    render_params_ = gpu::Buffer();
+    splat_grads_ = gpu::Buffer();
+    splat_grads_fixed_ = gpu::Buffer();
+    capacity_ = 0;
 }
 
 void DifferentiableRenderer::grow_entries(uint32_t needed) {

@@ -349,6 +349,7 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
     d.finish();
     const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
+    d.renderer.release_scene_sized();
     d.densify.apply(d.scene, plan);
     return plan.report;
 }
@@ -357,8 +358,10 @@ RelocationReport Trainer::relocate(const RelocationRules& rules) {
     auto& d = *impl_;
     d.finish();
     const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
-    if (relocation.report.relocated + relocation.report.added > 0)
+    if (relocation.report.relocated + relocation.report.added > 0) {
+        d.renderer.release_scene_sized();
         d.densify.apply(d.scene, relocation.plan);
+    }
     return relocation.report;
 }
 
@@ -377,6 +380,7 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     sums.reserve(plan.sources.size() * kDensifyStride);
     for (uint32_t i : plan.sources)
         sums.insert(sums.end(), before.begin() + i * kDensifyStride, before.begin() + (i + 1) * kDensifyStride);
+    d.renderer.release_scene_sized();
     d.densify.apply(d.scene, plan);
     if (!sums.empty()) d.scene.restore_densify_sums(d.context, sums);
     return keep.size() - plan.sources.size();

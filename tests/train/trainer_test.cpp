@@ -152,6 +152,25 @@ TEST_F(Trainer, RefusesAPhotoOfTheWrongSize) {
     }
 }
 
+// Removing Gaussians (as densification and the budget's settling do) holds no more device memory
+// than the larger of the steps before and after: the renderer's scene-sized buffers make room for
+// the old arrays that are gathered from one at a time. Without that the peak was the old scene's
+// step plus the new scene's arrays.
+TEST_F(Trainer, ChangingTheSceneHoldsNoMoreThanAStep) {
+    const auto cameras = arc_of_views(64, 48);
+    const train::Photo photo{64, 48, std::vector<uint32_t>(64 * 48, 0xff808080u)};
+    train::Trainer trainer(context(), cluster(4, 20000), {});
+    trainer.step(cameras[0], photo);
+    std::vector<uint8_t> keep(trainer.size(), 1);
+    for (size_t i = 0; i < keep.size(); i += 10) keep[i] = 0;
+    const uint64_t before = context().held_device_bytes();
+    context().reset_peak_device_bytes();
+    trainer.remove(keep);
+    trainer.step(cameras[1], photo);
+    EXPECT_EQ(trainer.size(), 18000u);
+    EXPECT_LE(context().peak_device_bytes(), std::max(before, context().held_device_bytes()) + (1u << 16));
+}
+
 // The blend backward's form names its stage; `fastest` tries both in turn on the first steps (the
 // choice by their timings is BlendBackwardChoice's test), a form asked for is kept. The first
 // step's splats cover more tiles than the first tile entries hold: its first try, cut short, is
