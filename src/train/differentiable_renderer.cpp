@@ -118,8 +118,11 @@ DifferentiableRenderer::~DifferentiableRenderer() = default;
 void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles) {
     frame_.ensure_gaussians(gaussians);
     frame_.ensure_image(pixels, tiles);
+    // The first frame starts from a few entries per Gaussian; after release_scene_sized() the
+    // capacity learned before comes back as it was (sized anew by the scene it could exceed it).
     if (frame_.entry_capacity == 0)
-        frame_.ensure_entries(std::max(std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian, released_entries_));
+        frame_.ensure_entries(released_entries_ ? released_entries_
+                                                : std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
     if (gaussians > capacity_) {
         render_params_ = gpu::Buffer();
         render_params_ = gpu::Buffer(context_, uint64_t(gaussians) * 48, gpu::MemoryKind::device, "activated parameters");
@@ -143,7 +146,7 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
 }
 
 void DifferentiableRenderer::release_scene_sized() {
-    released_entries_ = std::max(released_entries_, frame_.entry_capacity);
+    if (frame_.entry_capacity) released_entries_ = frame_.entry_capacity;
     frame_.release_scene_sized();
     render_params_ = gpu::Buffer();
     splat_grads_ = gpu::Buffer();
