@@ -121,5 +121,66 @@ TEST_F(FusedAdam, StepsAsAdamOnTheWrittenGradients) {
     EXPECT_EQ(moved_undrawn, 3 * ((cloud.size() + 9) / 10));
 }
 
+// A NaN in one pixel's gradient reaches the Gaussians drawn there: those whose gradient is not
+// finite (as the written gradients show) keep their parameters and moments, every other Gaussian
+// steps, and the step's status says a gradient was not finite.
+TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
+    // Float sums: fixed-point ones would turn the NaN into a number.
+    const GaussianCloud cloud = random_scene(12, 200, 1, 3.0f, 7.0f, 0.02f, 0.1f, 0.8f);
+    const Camera camera = forward_camera(64, 48, 60.0);
+    const auto [pixels, tiles] = render::image_extent(camera);
+    std::vector<float> weights(size_t(pixels) * 3, 0.1f);
+    weights[(24 * 64 + 32) * 3] = std::nanf("");
+    const auto gradient = train::pack_parameters(
+        train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::device_default).gradient);
+
+    const std::vector<float> zeros(train::pack_parameters(cloud).size(), 0.0f);
+    const GaussianCloud zero_moments = train::unpack_parameters(zeros, uint32_t(cloud.size()), cloud.sh_degree);
+    train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zero_moments, &zero_moments);
+    const shader::train::AdamSettings adam{.first_moment = scene.first_moment.address(),
+                                           .second_moment = scene.second_moment.address(),
+                                           .lr_position = 1e-3f, .lr_scale = 1e-3f, .lr_rotation = 1e-3f,
+                                           .lr_opacity = 1e-3f, .lr_sh_dc = 1e-3f, .lr_sh_rest = 1e-3f,
+                                           .beta1 = 0.9f, .beta2 = 0.999f, .epsilon = 1e-15f,
+                                           .bias_correction1 = 0.1f, .bias_correction2 = 0.001f};
+    const gpu::Buffer adam_buffer = gpu::upload_buffer(context(), &adam, sizeof(adam), "Adam settings");
+    std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
+    for (size_t p = 0; p < pixels; ++p) std::copy_n(&weights[3 * p], 3, &pixel_weights[4 * p]);
+    const gpu::Buffer pixel_grad = gpu::upload_buffer(context(), pixel_weights, "pixel weights");
+    train::DifferentiableRenderer renderer(context(), train::GradientSums::device_default);
+    renderer.ensure(scene.layout.count, pixels, tiles);
+    renderer.backpropagate(scene, camera, {}, pixel_grad.address(), adam_buffer.address());
+    EXPECT_NE(renderer.status() & train::kStepNonfinite, 0u);
+    const auto params = train::pack_parameters(scene.download(context()));
+    const auto m1 = train::pack_parameters(scene.download(context(), scene.first_moment));
+    const auto raw = train::pack_parameters(cloud);
+
+    const train::ParameterLayout layout{uint32_t(cloud.size()), uint32_t(cloud.sh_coefficients())};
+    const uint32_t sh_floats = layout.sh_coefficients * 3;
+    size_t kept = 0, stepped = 0;
+    for (uint32_t i = 0; i < layout.count; ++i) {
+        std::vector<uint64_t> at;
+        for (uint32_t k = 0; k < 3; ++k) at.insert(at.end(), {layout.positions() + 3 * i + k, layout.log_scales() + 3 * i + k});
+        for (uint32_t k = 0; k < 4; ++k) at.push_back(layout.rotations() + 4 * i + k);
+        at.push_back(layout.opacities() + i);
+        for (uint32_t k = 0; k < sh_floats; ++k) at.push_back(layout.sh() + sh_floats * i + k);
+        bool finite = true, same = true;
+        for (uint64_t a : at) {
+            finite = finite && std::isfinite(gradient[a]);
+            same = same && params[a] == raw[a] && m1[a] == 0.0f;
+        }
+        SCOPED_TRACE(i);
+        if (finite) {
+            EXPECT_FALSE(same) << "a Gaussian with finite gradients did not step";
+            ++stepped;
+        } else {
+            EXPECT_TRUE(same) << "a Gaussian with a non-finite gradient stepped";
+            ++kept;
+        }
+    }
+    EXPECT_GT(kept, 0u);
+    EXPECT_GT(stepped, kept);
+}
+
 }  // namespace
 }  // namespace vksplat::test

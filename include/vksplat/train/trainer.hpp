@@ -112,7 +112,9 @@ struct Photo {
 };
 
 struct StepResult {
-    bool applied = true;     // false: a gradient was not finite and Adam skipped the step
+    // false: some Gaussian's gradient was not finite; those Gaussians did not step (their
+    // parameters and Adam's moments are as they were), the others did. Counted as skipped.
+    bool applied = true;
     double loss = 0;         // (1 - lambda) l1 + lambda (1 - ssim)
     double l1 = 0;
     double ssim = 0;
@@ -198,7 +200,7 @@ public:
     std::vector<StepResult> take_results();
 
     // Steps submitted (applied, skipped or in flight), and of those finished, those skipped for
-    // non-finite gradients.
+    // non-finite gradients (StepResult::applied).
     uint64_t iteration() const;
     uint64_t skipped_steps() const;
     // The position learning rate the next step uses.
