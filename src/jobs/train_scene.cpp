@@ -31,11 +31,14 @@ namespace vksplat::jobs {
 namespace {
 
 namespace fs = std::filesystem;
-// What training holds per Gaussian besides its SH: 11 raw parameters, 4 copies (parameters,
-// gradients, two moments); activated parameters 48, per-splat gradients 36, densification sums 12,
-// and the frame's per-Gaussian arrays (about 100 bytes) with some tile entries (8 bytes each for
-// keys and values, twice for the sort's ping-pong, ~6 per Gaussian).
-constexpr uint64_t kFixedBytesPerGaussian = 4 * 11 * 4 + 48 + 36 + 12 + 100 + 6 * 16;
+// What training holds per Gaussian besides its SH: 11 raw parameters, 3 copies (parameters and
+// Adam's two moments: Adam steps inside the backward pass, so there is no gradient array);
+// activated parameters 48, per-splat gradients 36 and their fixed-point sums 72, densification
+// sums 12, and the frame's per-Gaussian arrays (about 100 bytes) with some tile entries (8 bytes
+// each for keys and values, twice for the sort's ping-pong, ~6 per Gaussian). Densification holds
+// no more: it frees the frame's and the per-splat arrays while it gathers one array at a time.
+constexpr uint64_t kParameterCopies = 3;
+constexpr uint64_t kFixedBytesPerGaussian = kParameterCopies * 11 * 4 + 48 + 36 + 72 + 12 + 100 + 6 * 16;
 // Per pixel: the frame's colour, depth and count, the trainer's transmittance, last position,
 // pixel gradient and photo, and the loss's nine planes.
 constexpr uint64_t kBytesPerPixel = 24 + 28 + 36;
@@ -179,7 +182,8 @@ DensifyStrategy parse_densify_strategy(std::string_view name) {
 }
 
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
-    const uint64_t per_gaussian = kFixedBytesPerGaussian + 4 * 4 * uint64_t(sh_coefficients_for_degree(sh_degree)) * 3;
+    const uint64_t per_gaussian =
+        kFixedBytesPerGaussian + kParameterCopies * 4 * uint64_t(sh_coefficients_for_degree(sh_degree)) * 3;
     const uint64_t per_image = pixels * kBytesPerPixel;
     return budget > per_image ? static_cast<size_t>((budget - per_image) / per_gaussian) : 0;
 }
