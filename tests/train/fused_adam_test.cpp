@@ -25,6 +25,24 @@ namespace {
 
 class FusedAdam : public GpuTest {};
 
+// One backward pass of `scene` to the pixel weights `weights` (rgb per pixel) with Adam's step
+// (`adam`, its moments set here to the scene's) fused in; returns the step's status.
+uint32_t fused_step(const gpu::Context& context, const train::TrainableScene& scene, const Camera& camera,
+                    const RenderSettings& settings, const std::vector<float>& weights,
+                    shader::train::AdamSettings adam, train::GradientSums sums) {
+    adam.first_moment = scene.first_moment.address();
+    adam.second_moment = scene.second_moment.address();
+    const gpu::Buffer adam_buffer = gpu::upload_buffer(context, &adam, sizeof(adam), "Adam settings");
+    const auto [pixels, tiles] = render::image_extent(camera);
+    std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
+    for (size_t p = 0; p < pixels; ++p) std::copy_n(&weights[3 * p], 3, &pixel_weights[4 * p]);
+    const gpu::Buffer pixel_grad = gpu::upload_buffer(context, pixel_weights, "pixel weights");
+    train::DifferentiableRenderer renderer(context, sums);
+    renderer.ensure(scene.layout.count, pixels, tiles);
+    renderer.backpropagate(scene, camera, settings, pixel_grad.address(), adam_buffer.address());
+    return renderer.status();
+}
+
 std::vector<float> random_values(size_t n, uint32_t seed, float lo, float hi) {
     std::mt19937 rng(seed);
     std::vector<float> values(n);
@@ -40,7 +58,7 @@ TEST_F(FusedAdam, StepsAsAdamOnTheWrittenGradients) {
     const Camera camera = forward_camera(64, 48, 60.0);
     RenderSettings settings;
     settings.max_sh_degree = 1;  // bands 2 and 3 get no gradient
-    const auto [pixels, tiles] = render::image_extent(camera);
+    const uint32_t pixels = render::image_extent(camera).pixels;
     const std::vector<float> weights = random_values(size_t(pixels) * 3, 3, -1.0f, 1.0f);
 
     // Moments as several steps would have left them.
@@ -52,7 +70,10 @@ TEST_F(FusedAdam, StepsAsAdamOnTheWrittenGradients) {
     };
     const GaussianCloud first_cloud = as_cloud(first), second_cloud = as_cloud(second);
 
-    shader::train::AdamSettings adam{.lr_position = 1.6e-4f,
+    // The moments' addresses are fused_step's to set.
+    const shader::train::AdamSettings adam{.first_moment = {},
+                                     .second_moment = {},
+                                     .lr_position = 1.6e-4f,
                                      .lr_scale = 5e-3f,
                                      .lr_rotation = 1e-3f,
                                      .lr_opacity = 0.05f,
@@ -67,17 +88,11 @@ TEST_F(FusedAdam, StepsAsAdamOnTheWrittenGradients) {
                                      .scale_regularization = 0.01f / 900.0f};
 
     // The fused step on the device.
-    train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &first_cloud, &second_cloud);
-    adam.first_moment = scene.first_moment.address();
-    adam.second_moment = scene.second_moment.address();
-    const gpu::Buffer adam_buffer = gpu::upload_buffer(context(), &adam, sizeof(adam), "Adam settings");
-    std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
-    for (size_t p = 0; p < pixels; ++p) std::copy_n(&weights[3 * p], 3, &pixel_weights[4 * p]);
-    const gpu::Buffer pixel_grad = gpu::upload_buffer(context(), pixel_weights, "pixel weights");
-    train::DifferentiableRenderer renderer(context(), train::GradientSums::fixed_point);
-    renderer.ensure(scene.layout.count, pixels, tiles);
-    renderer.backpropagate(scene, camera, settings, pixel_grad.address(), adam_buffer.address());
-    ASSERT_EQ(renderer.status() & train::kStepNonfinite, 0u);
+    const train::TrainableScene scene =
+        train::TrainableScene::upload(context(), cloud, &first_cloud, &second_cloud);
+    ASSERT_EQ(fused_step(context(), scene, camera, settings, weights, adam, train::GradientSums::fixed_point) &
+                  train::kStepNonfinite,
+              0u);
     const auto params = train::pack_parameters(scene.download(context()));
     const auto m1 = train::pack_parameters(scene.download(context(), scene.first_moment));
     const auto m2 = train::pack_parameters(scene.download(context(), scene.second_moment));
@@ -128,7 +143,7 @@ TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
     // Float sums: fixed-point ones would turn the NaN into a number.
     const GaussianCloud cloud = random_scene(12, 200, 1, 3.0f, 7.0f, 0.02f, 0.1f, 0.8f);
     const Camera camera = forward_camera(64, 48, 60.0);
-    const auto [pixels, tiles] = render::image_extent(camera);
+    const uint32_t pixels = render::image_extent(camera).pixels;
     std::vector<float> weights(size_t(pixels) * 3, 0.1f);
     weights[(24 * 64 + 32) * 3] = std::nanf("");
     const auto gradient = train::pack_parameters(
@@ -136,21 +151,16 @@ TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
 
     const std::vector<float> zeros(train::pack_parameters(cloud).size(), 0.0f);
     const GaussianCloud zero_moments = train::unpack_parameters(zeros, uint32_t(cloud.size()), cloud.sh_degree);
-    train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zero_moments, &zero_moments);
-    const shader::train::AdamSettings adam{.first_moment = scene.first_moment.address(),
-                                           .second_moment = scene.second_moment.address(),
+    const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zero_moments, &zero_moments);
+    const shader::train::AdamSettings adam{.first_moment = {}, .second_moment = {},
                                            .lr_position = 1e-3f, .lr_scale = 1e-3f, .lr_rotation = 1e-3f,
                                            .lr_opacity = 1e-3f, .lr_sh_dc = 1e-3f, .lr_sh_rest = 1e-3f,
                                            .beta1 = 0.9f, .beta2 = 0.999f, .epsilon = 1e-15f,
-                                           .bias_correction1 = 0.1f, .bias_correction2 = 0.001f};
-    const gpu::Buffer adam_buffer = gpu::upload_buffer(context(), &adam, sizeof(adam), "Adam settings");
-    std::vector<float> pixel_weights(size_t(pixels) * 4, 0.0f);
-    for (size_t p = 0; p < pixels; ++p) std::copy_n(&weights[3 * p], 3, &pixel_weights[4 * p]);
-    const gpu::Buffer pixel_grad = gpu::upload_buffer(context(), pixel_weights, "pixel weights");
-    train::DifferentiableRenderer renderer(context(), train::GradientSums::device_default);
-    renderer.ensure(scene.layout.count, pixels, tiles);
-    renderer.backpropagate(scene, camera, {}, pixel_grad.address(), adam_buffer.address());
-    EXPECT_NE(renderer.status() & train::kStepNonfinite, 0u);
+                                           .bias_correction1 = 0.1f, .bias_correction2 = 0.001f,
+                                           .opacity_regularization = 0.0f, .scale_regularization = 0.0f};
+    EXPECT_NE(fused_step(context(), scene, camera, {}, weights, adam, train::GradientSums::device_default) &
+                  train::kStepNonfinite,
+              0u);
     const auto params = train::pack_parameters(scene.download(context()));
     const auto m1 = train::pack_parameters(scene.download(context(), scene.first_moment));
     const auto raw = train::pack_parameters(cloud);
