@@ -29,6 +29,8 @@ SHADER_NAMESPACE_END
 #ifdef __cplusplus
 SHADER_NAMESPACE_BEGIN(train)
 BUFFER_REFERENCE(AdamSettingsBuffer, AdamSettings, 8)
+// std430's layout of the GLSL struct: two 8-byte addresses, 13 floats, padded to 8 bytes.
+static_assert(sizeof(AdamSettings) == 72 && offsetof(AdamSettings, lr_position) == 16);
 SHADER_NAMESPACE_END
 #else
 layout(buffer_reference, std430, buffer_reference_align = 8) readonly buffer AdamSettingsBuffer { AdamSettings s; };

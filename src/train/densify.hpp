@@ -54,9 +54,9 @@ public:
     // What plan_densify needs of `scene`, read back.
     DensifyInputs download_inputs(const TrainableScene& scene) const;
     // Lays `scene` out anew by the plan, from its parameters and moments; its densification sums
-    // start at zero, and gradients, if it kept any, are gone. Waits for the device. Holds at most the old scene's
-    // parameters and moments and one new array, or the new scene, at once. If it throws (out of
-    // device memory), `scene` is left empty: it was part old, part new.
+    // start at zero, and gradients, if it kept any, are gone. Waits for the device. Holds at most
+    // the old scene's parameters and moments and one new array, or the new scene, at once. If it
+    // throws (out of device memory), `scene` is left empty: it was part old, part new.
     void apply(TrainableScene& scene, const DensifyPlan& plan) const;
     // opacity = min(opacity, max_opacity) for every Gaussian, those moments zeroed. Waits.
     void reset_opacity(TrainableScene& scene, double max_opacity) const;

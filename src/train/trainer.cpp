@@ -165,6 +165,13 @@ struct Trainer::Impl {
     void record(Slot& slot, bool again);
     // Waits for `slot`'s step and keeps its result; `queued` is the step submitted behind it, if any.
     void finish_step(Slot& slot, Slot* queued);
+    // Lays the scene out by `plan`. The renderer's scene-sized buffers are idle between steps and
+    // about as large as one of the arrays the plan gathers, so they make room for it (the next
+    // step allocates them again): changing the scene then holds no more than a step does.
+    void change_scene(const DensifyPlan& plan) {
+        renderer.release_scene_sized();
+        densify.apply(scene, plan);
+    }
     // Densification that ran out of device memory leaves no scene (DensifyPasses::apply).
     void check_scene() const {
         if (!scene.params)
@@ -349,8 +356,7 @@ DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
     d.finish();
     const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
-    d.renderer.release_scene_sized();
-    d.densify.apply(d.scene, plan);
+    d.change_scene(plan);
     return plan.report;
 }
 
@@ -358,10 +364,7 @@ RelocationReport Trainer::relocate(const RelocationRules& rules) {
     auto& d = *impl_;
     d.finish();
     const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
-    if (relocation.report.relocated + relocation.report.added > 0) {
-        d.renderer.release_scene_sized();
-        d.densify.apply(d.scene, relocation.plan);
-    }
+    if (relocation.report.relocated + relocation.report.added > 0) d.change_scene(relocation.plan);
     return relocation.report;
 }
 
@@ -380,8 +383,7 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     sums.reserve(plan.sources.size() * kDensifyStride);
     for (uint32_t i : plan.sources)
         sums.insert(sums.end(), before.begin() + i * kDensifyStride, before.begin() + (i + 1) * kDensifyStride);
-    d.renderer.release_scene_sized();
-    d.densify.apply(d.scene, plan);
+    d.change_scene(plan);
     if (!sums.empty()) d.scene.restore_densify_sums(d.context, sums);
     return keep.size() - plan.sources.size();
 }

@@ -1,8 +1,9 @@
 #pragma once
 // A run whose steps keep meeting non-finite gradients learns little: the Gaussians they reach do
-// not step (StepResult::applied), and the run would end "successfully" with them unchanged. Training loops call this after
-// each step and stop with an error instead, once more than kMaxSkippedShare of the steps taken
-// (past the first kSkippedGraceSteps, where a single bad view weighs too much) were skipped.
+// not step (StepResult::applied), and the run would end "successfully" with them unchanged.
+// Training loops call this after each step and stop with an error instead, once more than
+// kMaxSkippedShare of the steps taken (past the first kSkippedGraceSteps, where a single bad view
+// weighs too much) were skipped.
 #include <cstdint>
 #include <string>
 

@@ -231,7 +231,7 @@ public:
     size_t size() const;
     // The current parameters (read back from the device).
     GaussianCloud cloud() const;
-    // Device memory its buffers hold now (scene, gradients, moments, frame, loss). A step's and
+    // Device memory its buffers hold now (parameters, Adam's moments, frame, loss). A step's and
     // densification's transients are not in it: the context's peak_device_bytes() has them.
     uint64_t device_bytes() const;
     const gpu::Context& context() const;
