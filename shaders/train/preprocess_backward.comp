@@ -1,5 +1,6 @@
 #version 460
-// Preprocess backward: one thread per Gaussian. From the gradients the blend backward gathered
+// Preprocess backward: one thread per Gaussian, then, for the SH coefficients of a workgroup's 256
+// Gaussians, one thread per float (main, below). From the gradients the blend backward gathered
 // for each splat (projected mean, conic, opacity, colour), the gradients of the raw parameters:
 // position, log-scales, quaternion, opacity logit and SH, through every step preprocess.comp and
 // train_activate.comp take (sigmoid, exp, quaternion normalisation, rotation and covariance,
