@@ -22,8 +22,8 @@
 // invocations walk one list together.
 //
 // Per pixel (PER_SPLAT 0): each invocation replays its own pixel, the subgroup walking its list
-// one splat at a time; the subgroup sums its pixels' gradients for the splat (9 reductions of
-// log2(subgroup size) shuffles each) and one invocation adds the sums.
+// one splat at a time; the subgroup sums its pixels' gradients for the splat (add_subgroup_sum:
+// 4 + 2 log2(subgroup size) shuffles) and eight invocations add the sums.
 //
 // Per splat (PER_SPLAT 1): the subgroup's invocations hold consecutive splats of its list, back to
 // front, and its W pixels' replay state (transmittance, colour behind) lies in shared memory (W:
@@ -35,8 +35,8 @@
 // splat W places further to the front, so the subgroup is full but for W - 1 steps of filling per
 // batch, and the finished gradients are added every W steps by all lanes at once.
 //
-// Why this form: the per-pixel one spends, per splat and subgroup, 9 reductions (log2 W shuffles
-// and adds each, ~90 instructions where the replay itself is ~50) and 9 single-lane atomics; this
+// Why this form: the per-pixel one spends, per splat and subgroup, its sums' shuffles (14 at
+// W = 32, each with its selects and add, against ~50 instructions of replay) and atomics; this
 // one spends one shared-memory read and write of a pixel's state per step and 9 atomic
 // instructions per W splats, and needs no workgroup barrier between steps (the state only moves
 // within the subgroup). That pays where lists are long and splats cover the subgroup's pixels:
@@ -54,6 +54,7 @@
 #extension GL_KHR_shader_subgroup_arithmetic : require
 #extension GL_KHR_shader_subgroup_vote : require
 #extension GL_KHR_shader_subgroup_ballot : require
+#extension GL_KHR_shader_subgroup_shuffle : require
 #if FLOAT_ATOMICS
 #extension GL_EXT_shader_atomic_float : require
 #endif
@@ -108,6 +109,47 @@ void add_splat_gradient(uint gaussian, SplatGradient grad) {
     add_gradient(base + SPLAT_GRAD_COLOR + 1u, grad.color.g);
     add_gradient(base + SPLAT_GRAD_COLOR + 2u, grad.color.b);
 }
+
+#if !PER_SPLAT
+// Sums the subgroup's gradients for one splat and adds the totals, the lanes sharing the work.
+// Nine subgroupAdds would cost 9 log2(W) shuffles and leave one lane to issue all nine atomics.
+// Instead the first butterfly levels halve the set a lane holds: at level s a lane keeps the half
+// of its values its bit s selects and sends the other half to its partner lane ^ s, so eight
+// values cost 4 + 2 + 1 shuffles, then one per further level, and eight lanes end with one
+// total each to add (slot = 4 b0 + 2 b1 + b2 of its lane's low bits). The ninth value takes a
+// subgroupAdd. Subgroups have at least 4 lanes (gpu::Context refuses smaller ones); with exactly
+// 4 each lane ends with two totals.
+void add_subgroup_sum(uint gaussian, SplatGradient grad) {
+    float v[8] = float[8](grad.mean.x, grad.mean.y, grad.conic.x, grad.conic.y, grad.conic.z, grad.opacity,
+                          grad.color.r, grad.color.g);
+    const float last_value = subgroupAdd(grad.color.b);
+    const uint lane = gl_SubgroupInvocationID, width = gl_SubgroupSize;
+    const uint base = gaussian * SPLAT_GRAD_STRIDE;
+    const bool upper1 = (lane & 1u) != 0u;
+    for (uint i = 0u; i < 4u; ++i) {
+        const float send = upper1 ? v[i] : v[i + 4u];
+        v[i] = (upper1 ? v[i + 4u] : v[i]) + subgroupShuffleXor(send, 1u);
+    }
+    const bool upper2 = (lane & 2u) != 0u;
+    for (uint i = 0u; i < 2u; ++i) {
+        const float send = upper2 ? v[i] : v[i + 2u];
+        v[i] = (upper2 ? v[i + 2u] : v[i]) + subgroupShuffleXor(send, 2u);
+    }
+    uint slot = (upper1 ? 4u : 0u) + (upper2 ? 2u : 0u);  // v[0] and v[1]: slots slot and slot + 1
+    if (width >= 8u) {
+        const bool upper4 = (lane & 4u) != 0u;
+        const float send = upper4 ? v[0] : v[1];
+        v[0] = (upper4 ? v[1] : v[0]) + subgroupShuffleXor(send, 4u);
+        slot += upper4 ? 1u : 0u;
+        for (uint s = 8u; s < width; s *= 2u) v[0] += subgroupShuffleXor(v[0], s);
+        if (lane < 8u) add_gradient(base + slot, v[0]);
+    } else {
+        add_gradient(base + slot, v[0]);
+        add_gradient(base + slot + 1u, v[1]);
+    }
+    if (lane == width - 1u) add_gradient(base + SPLAT_GRAD_COLOR + 2u, last_value);
+}
+#endif
 
 // What a pixel's replay reads from the forward pass and the loss.
 struct PixelBackward {
@@ -314,11 +356,7 @@ void main() {
                 if (blended) add_splat_gradient(batch_gaussian[j], grad);
                 continue;
             }
-            grad.mean = subgroupAdd(grad.mean);
-            grad.conic = subgroupAdd(grad.conic);
-            grad.color = subgroupAdd(grad.color);
-            grad.opacity = subgroupAdd(grad.opacity);
-            if (subgroupElect()) add_splat_gradient(batch_gaussian[j], grad);
+            add_subgroup_sum(batch_gaussian[j], grad);
         }
 #endif
         batch_end = batch_start;

@@ -223,7 +223,7 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
     info.pipeline_statistics = has_extension(extensions, VK_KHR_PIPELINE_EXECUTABLE_PROPERTIES_EXTENSION_NAME);
 
     const VkSubgroupFeatureFlags needed_ops = VK_SUBGROUP_FEATURE_BASIC_BIT | VK_SUBGROUP_FEATURE_BALLOT_BIT |
-                                              VK_SUBGROUP_FEATURE_ARITHMETIC_BIT;
+                                              VK_SUBGROUP_FEATURE_ARITHMETIC_BIT | VK_SUBGROUP_FEATURE_SHUFFLE_BIT;
     if (basic.apiVersion < VK_API_VERSION_1_2)
         info.unusable_reason = "Vulkan 1.2 is required";
     else if (family < 0)
@@ -232,7 +232,7 @@ DeviceInfo describe(VkPhysicalDevice device, uint32_t index) {
         info.unusable_reason = "bufferDeviceAddress is not supported";
     else if ((subgroup.supportedOperations & needed_ops) != needed_ops ||
              !(subgroup.supportedStages & VK_SHADER_STAGE_COMPUTE_BIT))
-        info.unusable_reason = "subgroup ballot and arithmetic operations in compute shaders are required";
+        info.unusable_reason = "subgroup ballot, arithmetic and shuffle operations in compute shaders are required";
     else if (info.subgroup_size < 4 || info.subgroup_size > 128)
         info.unusable_reason = "subgroup size " + std::to_string(info.subgroup_size) + " is outside 4..128";
     info.usable = info.unusable_reason.empty();
