@@ -2,8 +2,8 @@
 // (DifferentiableRenderer): train_activate.comp, then the render passes and blend_train.comp
 // (whose push is render's BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
 // blend_backward_cas.comp, their per-splat forms blend_backward_per_splat.comp and
-// blend_backward_per_splat_cas.comp, or blend_backward_fixed.comp and splat_grads_from_fixed.comp)
-// and preprocess_backward.comp.
+// blend_backward_per_splat_cas.comp) and preprocess_backward.comp, or blend_backward_fixed.comp and
+// preprocess_backward_fixed.comp.
 #ifndef VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 #define VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 
@@ -49,27 +49,17 @@ struct BlendBackwardPush {
 // Deterministic sums (--deterministic): blend_backward_fixed.comp adds each splat's gradients as
 // 64-bit integers, SPLAT_GRAD_FIXED_SCALE units per 1.0 (2^40: steps of 9.1e-13, totals within
 // +-8.4e6), because integer addition gives the same total in any order where float addition does
-// not; splat_grads_from_fixed.comp then turns the totals into splat_grads' floats. 64-bit integer
-// types exist in GLSL only with their extension, so only these two shaders declare them.
+// not; preprocess_backward_fixed.comp reads the totals. 64-bit integer types exist in GLSL only
+// with their extension, so only these two shaders declare them.
 SHADER_CONST(float, SPLAT_GRAD_FIXED_SCALE, 1099511627776.0)
-#ifdef __cplusplus
-BUFFER_REFERENCE(Int64s, std::int64_t, 8)
-#elif FIXED_POINT_SUMS
+#if !defined(__cplusplus) && FIXED_POINT_SUMS
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require
 layout(buffer_reference, std430, buffer_reference_align = 8) buffer Int64s { int64_t v[]; };
 #endif
 
-#if defined(__cplusplus) || FIXED_POINT_SUMS
-// splat_grads_from_fixed.comp: one thread per float, 256 per workgroup.
-struct SplatGradsFromFixedPush {
-    Int64s totals;         // SPLAT_GRAD_STRIDE totals per Gaussian (blend_backward_fixed.comp)
-    Floats splat_grads;    // out
-    uint count;            // floats
-};
-#endif
-
-// preprocess_backward.comp: one thread per Gaussian, 256 per workgroup.
+// preprocess_backward.comp, preprocess_backward_fixed.comp (whose splat_grads holds Int64s): one
+// thread per Gaussian, 256 per workgroup.
 struct PreprocessBackwardPush {
     CameraBuffer camera;
     Floats raw;          // parameters, shaders/train/parameter_layout.h

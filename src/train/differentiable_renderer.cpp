@@ -11,9 +11,9 @@
 #include "shaders/train/blend_backward_fixed.kernel.hpp"
 #include "shaders/train/blend_backward_per_splat.kernel.hpp"
 #include "shaders/train/blend_backward_per_splat_cas.kernel.hpp"
-#include "shaders/train/splat_grads_from_fixed.kernel.hpp"
 #include "shaders/train/blend_train.kernel.hpp"
 #include "shaders/train/preprocess_backward.kernel.hpp"
+#include "shaders/train/preprocess_backward_fixed.kernel.hpp"
 #include "shaders/train/train_activate.kernel.hpp"
 #include "stats/median.hpp"
 #include "vksplat/error.hpp"
@@ -71,7 +71,6 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
       activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
       blend_(std::make_unique<gpu::Kernel<BlendTrainKernel>>(c)),
       choice_(form_for(sums, form)),
-      preprocess_backward_(std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c)),
       frame_(c),
       status_(c, kStatusWords * sizeof(uint32_t), gpu::MemoryKind::device, "training step status") {
     for (gpu::Buffer& readback : readbacks_) {
@@ -89,7 +88,10 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
             throw InputError("--deterministic", c.info().name + " has no 64-bit buffer atomics, which its "
                                                 "order-independent gradient sums need");
         blend_backward_fixed_ = std::make_unique<gpu::Kernel<BlendBackwardFixedKernel>>(c);
-        from_fixed_ = std::make_unique<gpu::Kernel<SplatGradsFromFixedKernel>>(c);
+        preprocess_backward_fixed_ = std::make_unique<gpu::Kernel<PreprocessBackwardFixedKernel>>(c);
+        splat_grad_bytes_ = 8;
+    } else {
+        preprocess_backward_ = std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c);
     }
     float_atomics_ = c.info().float_atomics && sums == GradientSums::device_default;
 }
@@ -127,13 +129,8 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         render_params_ = gpu::Buffer();
         render_params_ = gpu::Buffer(context_, uint64_t(gaussians) * 48, gpu::MemoryKind::device, "activated parameters");
         splat_grads_ = gpu::Buffer();
-        splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * 4, gpu::MemoryKind::device,
-                                   "per-splat gradients");
-        if (blend_backward_fixed_) {
-            splat_grads_fixed_ = gpu::Buffer();
-            splat_grads_fixed_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * 8,
-                                             gpu::MemoryKind::device, "per-splat gradients (fixed point)");
-        }
+        splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes_,
+                                   gpu::MemoryKind::device, "per-splat gradients");
         capacity_ = gaussians;
     }
     if (pixels > pixel_capacity_) {
@@ -150,7 +147,6 @@ void DifferentiableRenderer::release_scene_sized() {
     frame_.release_scene_sized();
     render_params_ = gpu::Buffer();
     splat_grads_ = gpu::Buffer();
-    splat_grads_fixed_ = gpu::Buffer();
     capacity_ = 0;
 }
 
@@ -188,8 +184,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
     const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
-    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * 4);
-    if (blend_backward_fixed_) stream.fill(splat_grads_fixed_, 0, 0, uint64_t(grad_floats) * 8);
+    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * splat_grad_bytes_);
     stream.fill(status_, 0, 0, clear_overflow_mark ? VK_WHOLE_SIZE : sizeof(uint32_t));
     stream.barrier();
     const BlendBackwardPush backward{.camera = f.camera.address(),
@@ -201,31 +196,23 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                      .last = last_.address(),
                                      .pixel_grad = pixel_grad,
                                      .splat_grads = splat_grads_.address()};
-    if (blend_backward_fixed_) {
-        BlendBackwardPush fixed = backward;
-        fixed.splat_grads = splat_grads_fixed_.address();  // Int64s: the shader reads it so
-        stream.dispatch(*blend_backward_fixed_, fixed, tiles_x_, tiles_y_);
-        stream.barrier();
-        stream.dispatch(*from_fixed_,
-                        {.totals = splat_grads_fixed_.address(), .splat_grads = splat_grads_.address(), .count = grad_floats},
-                        gpu::groups_for(grad_floats));
-    } else {
-        record_blend_backward(stream, backward);
-    }
+    if (blend_backward_fixed_) stream.dispatch(*blend_backward_fixed_, backward, tiles_x_, tiles_y_);
+    else record_blend_backward(stream, backward);
     stream.barrier();
     stream.mark(blend_backward_stage(recorded_));
-    stream.dispatch(*preprocess_backward_,
-                    {.camera = f.camera.address(),
-                     .raw = scene.params.address(),
-                     .tiles_touched = f.tiles_touched.address(),
-                     .splat_grads = splat_grads_.address(),
-                     .grads = scene.grads.address(),
-                     .counters = f.counters.address(),
-                     .status = status_.address(),
-                     .densify = scene.densify.address(),
-                     .means_depth = f.means_depth.address(),
-                     .adam = adam},
-                    gpu::groups_for(scene.layout.count));
+    const PreprocessBackwardPush preprocess{.camera = f.camera.address(),
+                                            .raw = scene.params.address(),
+                                            .tiles_touched = f.tiles_touched.address(),
+                                            .splat_grads = splat_grads_.address(),
+                                            .grads = scene.grads.address(),
+                                            .counters = f.counters.address(),
+                                            .status = status_.address(),
+                                            .densify = scene.densify.address(),
+                                            .means_depth = f.means_depth.address(),
+                                            .adam = adam};
+    const uint32_t groups = gpu::groups_for(scene.layout.count);
+    if (preprocess_backward_fixed_) stream.dispatch(*preprocess_backward_fixed_, preprocess, groups);
+    else stream.dispatch(*preprocess_backward_, preprocess, groups);
     stream.barrier();
     stream.mark(adam ? "preprocess backward + Adam" : "preprocess backward");
 }
@@ -266,8 +253,7 @@ uint32_t DifferentiableRenderer::status(int slot) const {
 }
 
 uint64_t DifferentiableRenderer::device_bytes() const {
-    return frame_.device_bytes() + render_params_.size() + splat_grads_.size() + splat_grads_fixed_.size() +
-           transmittance_.size() +
+    return frame_.device_bytes() + render_params_.size() + splat_grads_.size() + transmittance_.size() +
            last_.size() + status_.size();
 }
 

@@ -6,8 +6,8 @@
 // splat, BlendBackward) -> preprocess_backward (gradients of every raw parameter). Both are
 // recorded into the caller's command stream, so a training step is one submission. Kernels:
 // shaders/train/{train_activate,blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,
-// blend_backward_per_splat,blend_backward_per_splat_cas,splat_grads_from_fixed,
-// preprocess_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
+// blend_backward_per_splat,blend_backward_per_splat_cas,preprocess_backward,
+// preprocess_backward_fixed}.comp, layouts in shaders/train/differentiable_renderer.h.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -32,7 +32,7 @@ struct BlendBackwardCasKernel;
 struct BlendBackwardFixedKernel;
 struct BlendBackwardPerSplatKernel;
 struct BlendBackwardPerSplatCasKernel;
-struct SplatGradsFromFixedKernel;
+struct PreprocessBackwardFixedKernel;
 struct PreprocessBackwardKernel;
 }  // namespace vksplat::shader::train
 
@@ -124,6 +124,8 @@ public:
 
     const gpu::Buffer& color_alpha() const { return frame_.color_alpha; }
     const gpu::Buffer& status_buffer() const { return status_; }
+    // The blend backward's per-splat totals: floats, or with fixed_point sums 64-bit integers in
+    // units of 2^-40 (shaders/train/differentiable_renderer.h).
     const gpu::Buffer& splat_grads() const { return splat_grads_; }
     // Device bytes its buffers hold.
     uint64_t device_bytes() const;
@@ -137,7 +139,7 @@ private:
     std::unique_ptr<gpu::Kernel<shader::train::TrainActivateKernel>> activate_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendTrainKernel>> blend_;
     // With float atomics (per pixel and per splat), with compare-and-swap loops (both), or in
-    // fixed point (per pixel, with the pass that turns its totals into floats).
+    // fixed point (per pixel, with the preprocess backward that reads its totals).
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardKernel>> blend_backward_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardPerSplatKernel>> per_splat_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendBackwardCasKernel>> blend_backward_cas_;
@@ -146,14 +148,14 @@ private:
     bool float_atomics_ = false;  // else compare-and-swap loops (or fixed point)
     BlendBackwardChoice choice_;
     BlendBackward recorded_ = BlendBackward::per_pixel;  // the form the last record_backward ran
-    std::unique_ptr<gpu::Kernel<shader::train::SplatGradsFromFixedKernel>> from_fixed_;
     std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
+    std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardFixedKernel>> preprocess_backward_fixed_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
     uint32_t released_entries_ = 0;  // the entry capacity before release_scene_sized()
     uint32_t pixel_capacity_ = 0;
     gpu::Buffer render_params_, splat_grads_;      // per Gaussian
-    gpu::Buffer splat_grads_fixed_;                // per Gaussian, fixed_point sums only
+    uint32_t splat_grad_bytes_ = 4;                // a float each, or an int64 with fixed_point sums
     gpu::Buffer transmittance_, last_;             // per pixel
     gpu::Buffer status_;
     std::array<gpu::Buffer, kReadbackSlots> readbacks_;

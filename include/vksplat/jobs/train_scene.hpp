@@ -147,7 +147,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                         const std::function<void(const train::LoopStatus&)>& progress = {});
 
 // The Gaussians a memory budget leaves room for: the trainer's bytes per Gaussian (parameters,
-// gradients, moments, frame and per-splat buffers) against the budget less the per-pixel buffers.
+// Adam's moments, frame and per-splat buffers) against the budget less the per-pixel buffers.
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels);
 
 }  // namespace vksplat::jobs
