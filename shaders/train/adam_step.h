@@ -1,5 +1,5 @@
-// Adam's settings for one training step, which preprocess_backward.comp reads through
-// PreprocessBackwardPush::adam to step each Gaussian's parameters as it finds their gradients
+// Adam's settings for one training step, which preprocess_backward.comp and sh_backward.comp read
+// through their pushes' `adam` to step each Gaussian's parameters as it finds their gradients
 // (shaders/train/adam.glsl). The trainer (src/train/trainer.cpp) writes them into a small device
 // buffer at the start of each step's commands: they change every step (bias corrections, decaying
 // rates) and do not fit the push constants' 128 bytes beside the pass's own addresses.

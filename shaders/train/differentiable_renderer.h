@@ -3,7 +3,7 @@
 // (whose push is render's BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
 // blend_backward_cas.comp, their per-splat forms blend_backward_per_splat.comp and
 // blend_backward_per_splat_cas.comp) and preprocess_backward.comp, or blend_backward_fixed.comp and
-// preprocess_backward_fixed.comp.
+// preprocess_backward_fixed.comp; then sh_backward.comp.
 #ifndef VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 #define VKSPLAT_TRAIN_DIFFERENTIABLE_RENDERER_H
 
@@ -70,8 +70,22 @@ struct PreprocessBackwardPush {
     Uints status;        // [0]: STEP_ bits, [STATUS_OVERFLOW_MARK]: the overflow mark
     Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by
     Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
+    // out, 2 per Gaussian: its view direction (w: 1 where its SH steps, 0 where its gradient was
+    // not finite) and d L / d colour, for sh_backward.comp
+    Vec4s sh_steps;
     // A training step's Adam settings (adam_step.h): the pass steps `raw` by its gradients instead
     // of writing them to `grads`. 0: write them (gradient checks, Fisher probes).
+    OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
+};
+
+// sh_backward.comp: one thread per SH float, four at a time, 256 per workgroup.
+struct ShBackwardPush {
+    CameraBuffer camera;
+    Floats raw;
+    Floats grads;        // out, where `adam` is 0
+    Uints counters;
+    Uints status;
+    Vec4s sh_steps;      // what preprocess_backward.comp left
     OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
 };
 

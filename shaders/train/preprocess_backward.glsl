@@ -4,21 +4,24 @@
 // Preprocess backward, included by preprocess_backward.comp (the blend backward summed each
 // splat's gradients as floats) and preprocess_backward_fixed.comp (as 64-bit integers,
 // SPLAT_GRAD_FIXED_SCALE units per 1.0, read here as they are: no pass turns them into floats
-// first, nor holds a float copy). One thread per Gaussian, then, for the SH coefficients of a
-// workgroup's 256 Gaussians, one thread per float (main, below). From the gradients the blend backward gathered
-// for each splat (projected mean, conic, opacity, colour), the gradients of the raw parameters:
-// position, log-scales, quaternion, opacity logit and SH, through every step preprocess.comp and
+// first, nor holds a float copy). One thread per Gaussian. From the gradients the blend backward
+// gathered for each splat (projected mean, conic, opacity, colour), the gradients of the raw
+// position, log-scales, quaternion and opacity logit, through every step preprocess.comp and
 // train_activate.comp take (sigmoid, exp, quaternion normalisation, rotation and covariance,
 // EWA projection with its clamped Jacobian, the 0.3 px low-pass, the conic's inverse, the SH
 // colour with its clamp at 0 and its view direction). Exact derivatives of that forward: where
 // the Jacobian's lateral position is clamped it no longer moves with the position, so it passes
 // no gradient there. Gaussians the frame did not draw get zeros.
+// The SH coefficients' gradients are basis(view direction) x d L / d colour: this pass leaves
+// each Gaussian's direction and colour gradient in pc.sh_steps, and sh_backward.comp takes them
+// one float a thread. In one pass they cost more than the two: this one needs ~200 registers,
+// which leaves too few threads on a multiprocessor to keep the SH block's loads in flight.
 // In a training step (pc.adam set) each gradient goes straight into Adam (adam.glsl) with the
-// learning rate of its parameter group (the SH block splits into the DC coefficient and the
-// rest), and 3DGS-MCMC's regularisers join it here, as they reach every Gaussian, seen or not;
-// otherwise the gradients are written to pc.grads. A Gaussian with a non-finite gradient sets
-// STEP_NONFINITE in the step status and, in a training step, does not step: its parameters and
-// moments stay as they were, while the others step (the host counts the step as skipped).
+// learning rate of its parameter group, and 3DGS-MCMC's regularisers join it here, as they reach
+// every Gaussian, seen or not; otherwise the gradients are written to pc.grads. A Gaussian with a
+// non-finite gradient sets STEP_NONFINITE in the step status and, in a training step, does not
+// step: its parameters and moments stay as they were, while the others step (the host counts the
+// step as skipped).
 #include "shaders/common/buffers.h"
 #include "vksplat/constants.hpp"
 #include "shaders/render/frame.h"
@@ -27,7 +30,7 @@
 #include "shaders/common/gaussian_shape.glsl"
 #include "shaders/train/adam.glsl"
 
-layout(local_size_x = 256) in;  // shared_dir and shared_dcolor below hold one entry a thread
+layout(local_size_x = 256) in;
 
 // The blend backward's total k (of SPLAT_GRAD_STRIDE per Gaussian).
 float splat_grad(uint k) {
@@ -52,30 +55,6 @@ vec4 rotation_backward(vec4 q, mat3 g) {
         -2.0 * z * G(0, 0) - w * G(0, 1) + x * G(0, 2) + w * G(1, 0) - 2.0 * z * G(1, 1) + y * G(1, 2) +
             x * G(2, 0) + y * G(2, 1));
 #undef G
-}
-
-// Real SH basis function k (0 to 15) at unit direction `dir`, as sh.glsl's colour uses it.
-float sh_basis_function(uint k, vec3 dir) {
-    const float x = dir.x, y = dir.y, z = dir.z;
-    const float xx = x * x, yy = y * y, zz = z * z;
-    switch (k) {
-        case 0u: return SH_C0;
-        case 1u: return -SH_C1 * y;
-        case 2u: return SH_C1 * z;
-        case 3u: return -SH_C1 * x;
-        case 4u: return SH_C2[0] * x * y;
-        case 5u: return SH_C2[1] * y * z;
-        case 6u: return SH_C2[2] * (2.0 * zz - xx - yy);
-        case 7u: return SH_C2[3] * x * z;
-        case 8u: return SH_C2[4] * (xx - yy);
-        case 9u: return SH_C3[0] * y * (3.0 * xx - yy);
-        case 10u: return SH_C3[1] * x * y * z;
-        case 11u: return SH_C3[2] * y * (4.0 * zz - xx - yy);
-        case 12u: return SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy);
-        case 13u: return SH_C3[4] * x * (4.0 * zz - xx - yy);
-        case 14u: return SH_C3[5] * z * (xx - yy);
-        default: return SH_C3[6] * x * (xx - 3.0 * yy);
-    }
 }
 
 // d (basis function k) / d (x, y, z) at unit direction `dir`, for k from 1 to 15 (the constant
@@ -281,13 +260,9 @@ ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
     return sh;
 }
 
-shared vec4 shared_dir[256];     // w: 1 where the Gaussian's SH steps
-shared vec4 shared_dcolor[256];
-
 void main() {
     const CameraParams cam = pc.camera.c;
     const uint n = cam.gaussian_count;
-    const uint sh_floats = 3u * cam.sh_stride;
     // A frame that overflowed walked cut lists: its gradients are wrong, and it is run again, so
     // it adds nothing to the densification sums either (they would count the step twice). A step
     // queued behind one that overflowed does the same (parameter_layout.h, the overflow mark).
@@ -301,43 +276,9 @@ void main() {
     }
     AdamSettings adam;
     if (fused()) adam = AdamSettingsBuffer(pc.adam).s;
-    const uint group = gl_WorkGroupSize.x, local = gl_LocalInvocationID.x;
-    const uint used = (cam.sh_degree + 1u) * (cam.sh_degree + 1u);  // coefficients the frame used
-    // Each workgroup takes 256 Gaussians at a time: one thread each for everything but the SH,
-    // then the SH coefficients of all 256 (contiguous: [Gaussian][coefficient][rgb]) one float a
-    // thread, so that the moments and parameters are read and written in whole cache lines. Per
-    // Gaussian they were 48 floats apart between neighbouring threads, which made the fused step
-    // cost more than the separate Adam pass it replaced.
-    for (uint first = gl_WorkGroupID.x * group; first < n; first += gl_NumWorkGroups.x * group) {
-        const uint i = first + local;
-        ShStep sh = ShStep(vec3(0.0), vec3(0.0), false);
-        if (i < n) sh = backward(adam, cam, n, i);
-        shared_dir[local] = vec4(sh.dir, sh.steps ? 1.0 : 0.0);
-        shared_dcolor[local] = vec4(sh.dl_dcolor, 0.0);
-        barrier();
-        const uint floats = min(group, n - first) * sh_floats, base = sh_offset(n) + sh_floats * first;
-        // Four floats a thread at a time, loaded before any is stored (adam.glsl).
-        for (uint j0 = local; j0 < floats; j0 += 4u * group) {
-            float grad[4];
-            bool steps[4];
-            AdamState state[4];
-            [[unroll]] for (uint u = 0u; u < 4u; ++u) {
-                const uint j = j0 + u * group;
-                const uint g = min(j, floats - 1u) / sh_floats, within = j - g * sh_floats, k = within / 3u;
-                const vec4 dir = shared_dir[g];
-                steps[u] = j < floats && dir.w != 0.0;
-                grad[u] = k < used ? sh_basis_function(k, dir.xyz) * shared_dcolor[g][within - 3u * k] : 0.0;
-                if (steps[u] && fused()) state[u] = adam_load(adam, pc.raw, base + j);
-            }
-            [[unroll]] for (uint u = 0u; u < 4u; ++u) {
-                const uint j = j0 + u * group;
-                if (!steps[u]) continue;
-                if (fused())
-                    adam_store(adam, pc.raw, base + j, state[u], grad[u], j % sh_floats < 3u ? adam.lr_sh_dc : adam.lr_sh_rest);
-                else
-                    pc.grads.v[base + j] = grad[u];
-            }
-        }
-        barrier();
+    for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
+        const ShStep sh = backward(adam, cam, n, i);
+        pc.sh_steps.v[2u * i] = vec4(sh.dir, sh.steps ? 1.0 : 0.0);
+        pc.sh_steps.v[2u * i + 1u] = vec4(sh.dl_dcolor, 0.0);
     }
 }

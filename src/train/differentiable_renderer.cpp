@@ -14,6 +14,7 @@
 #include "shaders/train/blend_train.kernel.hpp"
 #include "shaders/train/preprocess_backward.kernel.hpp"
 #include "shaders/train/preprocess_backward_fixed.kernel.hpp"
+#include "shaders/train/sh_backward.kernel.hpp"
 #include "shaders/train/train_activate.kernel.hpp"
 #include "stats/median.hpp"
 #include "vksplat/error.hpp"
@@ -71,6 +72,7 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
       activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
       blend_(std::make_unique<gpu::Kernel<BlendTrainKernel>>(c)),
       choice_(form_for(sums, form)),
+      sh_backward_(std::make_unique<gpu::Kernel<ShBackwardKernel>>(c)),
       frame_(c),
       status_(c, kStatusWords * sizeof(uint32_t), gpu::MemoryKind::device, "training step status") {
     for (gpu::Buffer& readback : readbacks_) {
@@ -200,6 +202,9 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     else record_blend_backward(stream, backward);
     stream.barrier();
     stream.mark(blend_backward_stage(recorded_));
+    // The activated parameters are read only by the forward's preprocess: until the next step
+    // activates them again, their 48 bytes per Gaussian hold the 32 that the SH backward reads.
+    const VkDeviceAddress sh_steps = render_params_.address();
     const PreprocessBackwardPush preprocess{.camera = f.camera.address(),
                                             .raw = scene.params.address(),
                                             .tiles_touched = f.tiles_touched.address(),
@@ -209,12 +214,24 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                             .status = status_.address(),
                                             .densify = scene.densify.address(),
                                             .means_depth = f.means_depth.address(),
+                                            .sh_steps = sh_steps,
                                             .adam = adam};
     const uint32_t groups = gpu::groups_for(scene.layout.count);
     if (preprocess_backward_fixed_) stream.dispatch(*preprocess_backward_fixed_, preprocess, groups);
     else stream.dispatch(*preprocess_backward_, preprocess, groups);
     stream.barrier();
     stream.mark(adam ? "preprocess backward + Adam" : "preprocess backward");
+    const uint64_t sh_floats = uint64_t(scene.layout.count) * scene.layout.sh_coefficients * 3;
+    stream.dispatch(*sh_backward_,
+                    {.camera = f.camera.address(),
+                     .raw = scene.params.address(),
+                     .grads = scene.grads.address(),
+                     .counters = f.counters.address(),
+                     .status = status_.address(),
+                     .sh_steps = sh_steps,
+                     .adam = adam},
+                    gpu::groups_for(uint32_t((sh_floats + 3) / 4)));
+    stream.mark(adam ? "SH backward + Adam" : "SH backward");
 }
 
 void DifferentiableRenderer::learn_timings(const gpu::CommandStream& stream, int slot) {

@@ -3,11 +3,12 @@
 // needs, and that backward pass. Forward: activation -> TileBinning -> blend_train (the picture,
 // and per pixel the final transmittance and where its list walk ended). Backward, from dL/d rgb
 // per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour; per pixel or per
-// splat, BlendBackward) -> preprocess_backward (gradients of every raw parameter). Both are
-// recorded into the caller's command stream, so a training step is one submission. Kernels:
+// splat, BlendBackward) -> preprocess_backward (gradients of the geometry) -> sh_backward (of the
+// SH coefficients). All are recorded into the caller's command stream, so a training step is one
+// submission. Kernels:
 // shaders/train/{train_activate,blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,
 // blend_backward_per_splat,blend_backward_per_splat_cas,preprocess_backward,
-// preprocess_backward_fixed}.comp, layouts in shaders/train/differentiable_renderer.h.
+// preprocess_backward_fixed,sh_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
 #include <array>
 #include <cstdint>
 #include <memory>
@@ -33,6 +34,7 @@ struct BlendBackwardFixedKernel;
 struct BlendBackwardPerSplatKernel;
 struct BlendBackwardPerSplatCasKernel;
 struct PreprocessBackwardFixedKernel;
+struct ShBackwardKernel;
 struct PreprocessBackwardKernel;
 }  // namespace vksplat::shader::train
 
@@ -150,6 +152,7 @@ private:
     BlendBackward recorded_ = BlendBackward::per_pixel;  // the form the last record_backward ran
     std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
     std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardFixedKernel>> preprocess_backward_fixed_;
+    std::unique_ptr<gpu::Kernel<shader::train::ShBackwardKernel>> sh_backward_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
     uint32_t released_entries_ = 0;  // the entry capacity before release_scene_sized()
