@@ -231,6 +231,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                      .sh_steps = sh_steps,
                      .adam = adam},
                     gpu::groups_for(uint32_t((sh_floats + 3) / 4)));
+    stream.barrier();
     stream.mark(adam ? "SH backward + Adam" : "SH backward");
 }
 
