@@ -8,6 +8,7 @@
 
 #include <cstdint>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "gpu/buffer.hpp"
@@ -36,15 +37,16 @@ public:
     void begin();
     // Records `kernel` over groups_x x groups_y workgroups with its push constants: only its own
     // push type is accepted (gpu/kernel.hpp).
-    template <class K>
-    void dispatch(const Kernel<K>& kernel, const typename K::Push& push, uint32_t groups_x, uint32_t groups_y = 1) {
-        dispatch(kernel, &push, sizeof(push), groups_x, groups_y);
+    template <class P>
+    void dispatch(const PushKernel<P>& kernel, const std::type_identity_t<P>& push, uint32_t groups_x,
+                  uint32_t groups_y = 1) {
+        dispatch(static_cast<const ComputePipeline&>(kernel), &push, sizeof(push), groups_x, groups_y);
     }
     // Group counts come from a VkDispatchIndirectCommand the GPU wrote at `offset` of `args`.
-    template <class K>
-    void dispatch_indirect(const Kernel<K>& kernel, const typename K::Push& push, const Buffer& args,
+    template <class P>
+    void dispatch_indirect(const PushKernel<P>& kernel, const std::type_identity_t<P>& push, const Buffer& args,
                            VkDeviceSize offset) {
-        dispatch_indirect(kernel, &push, sizeof(push), args, offset);
+        dispatch_indirect(static_cast<const ComputePipeline&>(kernel), &push, sizeof(push), args, offset);
     }
     // Makes every earlier shader or transfer write visible to every later shader, indirect-argument
     // or transfer access. Passes are ordered by this one coarse barrier: they are few and each

@@ -17,7 +17,7 @@ class ComputePipeline {
 public:
     ComputePipeline(const Context& context, std::span<const uint32_t> spirv, uint32_t push_constant_bytes,
                     std::vector<uint32_t> specialization = {}, std::string name = "");
-    ~ComputePipeline();
+    virtual ~ComputePipeline();  // owned through a PushKernel<P> where a pass takes several shaders
     ComputePipeline(const ComputePipeline&) = delete;
     ComputePipeline& operator=(const ComputePipeline&) = delete;
 

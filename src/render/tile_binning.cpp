@@ -23,9 +23,11 @@ void check_entries_sortable(uint32_t needed) {
                        "smaller image)");
 }
 
-TileBinning::TileBinning(const gpu::Context& c)
+TileBinning::TileBinning(const gpu::Context& c) : TileBinning(c, std::make_unique<gpu::Kernel<PreprocessKernel>>(c)) {}
+
+TileBinning::TileBinning(const gpu::Context& c, std::unique_ptr<PreprocessPipeline> preprocess)
     : clear_words_(std::make_unique<gpu::Kernel<ClearWordsKernel>>(c)),
-      preprocess_(std::make_unique<gpu::Kernel<PreprocessKernel>>(c)),
+      preprocess_(std::move(preprocess)),
       indirect_args_(std::make_unique<gpu::Kernel<IndirectArgsKernel>>(c)),
       emit_tile_entries_(std::make_unique<gpu::Kernel<EmitTileEntriesKernel>>(c)),
       tile_ranges_(std::make_unique<gpu::Kernel<TileRangesKernel>>(c)),

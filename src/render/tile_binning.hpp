@@ -1,8 +1,8 @@
 #pragma once
-// TileBinning: every pass of a frame before the blend, from the scene's activated parameters to
-// each tile's depth-ordered list of splats: preprocess (which also keys every Gaussian for the
-// depth sort, the culled ones last), the depth sort, the tile entries, the stable tile sort and the tile ranges. The renderer and the
-// trainer both record it, then blend (and the trainer differentiates) what it leaves in the
+// TileBinning: every pass of a frame before the blend, from the scene's parameters to each tile's
+// depth-ordered list of splats: preprocess (which also keys every Gaussian for the depth sort, the
+// culled ones last), the depth sort, the tile entries, the stable tile sort and the tile ranges.
+// The renderer and the trainer both record it, then blend (and the trainer differentiates) what it leaves in the
 // FrameResources. Its kernels: shaders/render/{preprocess,clear_words,indirect_args,
 // emit_tile_entries,tile_ranges}.comp, their layouts in shaders/render/tile_binning.h.
 #include <cstdint>
@@ -16,7 +16,7 @@
 #include "render/frame_resources.hpp"
 
 namespace vksplat::shader::render {
-struct PreprocessKernel;
+struct PreprocessPush;
 struct ClearWordsKernel;
 struct IndirectArgsKernel;
 struct EmitTileEntriesKernel;
@@ -25,9 +25,11 @@ struct TileRangesKernel;
 
 namespace vksplat::render {
 
-// The activated scene a frame reads: GpuScene's layout, possibly inside larger buffers.
+// The scene a frame reads. `params` as the preprocess kernel reads them: for the renderer's,
+// GpuScene's activated layout, possibly inside larger buffers, 3 vec4 per Gaussian: (position,
+// opacity), (scale, 0), (quaternion w, x, y, z); for the trainer's, its raw parameters.
 struct SceneAddresses {
-    VkDeviceAddress params = 0;  // 3 vec4 per Gaussian: (position, opacity), (scale, 0), (quaternion w, x, y, z)
+    VkDeviceAddress params = 0;
     VkDeviceAddress sh = 0;      // [Gaussian][coefficient][rgb], float or packed halves
     uint32_t count = 0;
 };
@@ -43,7 +45,12 @@ void check_entries_sortable(uint32_t needed);
 
 class TileBinning {
 public:
+    using PreprocessPipeline = gpu::PushKernel<shader::render::PreprocessPush>;
+    // With the renderer's preprocess (shaders/render/preprocess.comp).
     explicit TileBinning(const gpu::Context& context);
+    // With another preprocess of the same push and outputs: the trainer's reads its raw parameters
+    // (shaders/train/preprocess_trainable.comp).
+    TileBinning(const gpu::Context& context, std::unique_ptr<PreprocessPipeline> preprocess);
     ~TileBinning();
 
     // Records the camera and counter uploads and the passes up to the tile ranges into `stream`,
@@ -56,7 +63,7 @@ public:
 
 private:
     std::unique_ptr<gpu::Kernel<shader::render::ClearWordsKernel>> clear_words_;
-    std::unique_ptr<gpu::Kernel<shader::render::PreprocessKernel>> preprocess_;
+    std::unique_ptr<PreprocessPipeline> preprocess_;
     std::unique_ptr<gpu::Kernel<shader::render::IndirectArgsKernel>> indirect_args_;
     std::unique_ptr<gpu::Kernel<shader::render::EmitTileEntriesKernel>> emit_tile_entries_;
     std::unique_ptr<gpu::Kernel<shader::render::TileRangesKernel>> tile_ranges_;
