@@ -1,6 +1,7 @@
 // The training passes of a view, recorded by src/train/differentiable_renderer.cpp
-// (DifferentiableRenderer): train_activate.comp, then the render passes and blend_train.comp
-// (whose push is render's BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
+// (DifferentiableRenderer): the render passes with preprocess_trainable.comp (whose push is
+// render's PreprocessPush, shaders/render/tile_binning.h) and blend_train.comp (render's
+// BlendTrainPush, shaders/render/blend.h), then blend_backward.comp (or
 // blend_backward_cas.comp, their per-splat forms blend_backward_per_splat.comp and
 // blend_backward_per_splat_cas.comp) and preprocess_backward.comp, or blend_backward_fixed.comp and
 // preprocess_backward_fixed.comp; then sh_backward.comp.
@@ -14,22 +15,17 @@
 #include "shaders/train/parameter_layout.h"
 #ifdef __cplusplus
 #include "shaders/render/blend.h"  // BlendTrainPush (GLSL: blend_train.comp includes it with its flags)
+#include "shaders/render/tile_binning.h"  // PreprocessPush (GLSL: preprocess_trainable.comp includes it)
 #endif
 
 SHADER_NAMESPACE_BEGIN(train)
 
 #ifdef __cplusplus
 using render::BlendTrainPush;
+using render::PreprocessPush;
 using render::CameraBuffer;
 using render::Footprints;
 #endif
-
-// train_activate.comp: the raw parameters into the renderer's activated ones, 256 Gaussians per workgroup.
-struct TrainActivatePush {
-    Floats raw;
-    Vec4s params;  // out: 3 vec4 per Gaussian
-    uint count;
-};
 
 // blend_backward.comp, blend_backward_cas.comp, blend_backward_fixed.comp (whose splat_grads
 // holds Int64s), blend_backward_per_splat.comp, blend_backward_per_splat_cas.comp: one workgroup
@@ -70,12 +66,15 @@ struct PreprocessBackwardPush {
     Uints status;        // [0]: STEP_ bits, [STATUS_OVERFLOW_MARK]: the overflow mark
     Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by
     Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
-    // out, 2 per Gaussian: its view direction (w: 1 where its SH steps, 0 where its gradient was
-    // not finite) and d L / d colour, for sh_backward.comp
-    Vec4s sh_steps;
+    // out, for sh_backward.comp: per Gaussian, at sh_step_stride floats apart, SH_STEP_FLOATS
+    // floats: its view direction, 1 where its SH steps (0 where its gradient was not finite), and
+    // d L / d colour. In a training step this is splat_grads itself: each thread reads its
+    // Gaussian's totals before it writes over them.
+    Floats sh_steps;
     // A training step's Adam settings (adam_step.h): the pass steps `raw` by its gradients instead
     // of writing them to `grads`. 0: write them (gradient checks, Fisher probes).
     OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
+    uint sh_step_stride;
 };
 
 // sh_backward.comp: one thread per SH float, four at a time, 256 per workgroup.
@@ -85,8 +84,9 @@ struct ShBackwardPush {
     Floats grads;        // out, where `adam` is 0
     Uints counters;
     Uints status;
-    Vec4s sh_steps;      // what preprocess_backward.comp left
+    Floats sh_steps;     // what preprocess_backward.comp left
     OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
+    uint sh_step_stride;
 };
 
 SHADER_NAMESPACE_END

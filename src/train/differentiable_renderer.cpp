@@ -14,14 +14,17 @@
 #include "shaders/train/blend_train.kernel.hpp"
 #include "shaders/train/preprocess_backward.kernel.hpp"
 #include "shaders/train/preprocess_backward_fixed.kernel.hpp"
+#include "shaders/train/preprocess_trainable.kernel.hpp"
 #include "shaders/train/sh_backward.kernel.hpp"
-#include "shaders/train/train_activate.kernel.hpp"
 #include "stats/median.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::train {
 
 using namespace shader::train;
+
+// The SH backward's inputs go over a Gaussian's per-splat totals in a training step.
+static_assert(kShStepFloats <= kSplatGradStride);
 
 void BlendBackwardChoice::scene_size(uint32_t gaussians) {
     if (wanted_ != BlendBackward::fastest) return;
@@ -68,8 +71,7 @@ BlendBackward form_for(GradientSums sums, BlendBackward form) {
 
 DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSums sums, BlendBackward form)
     : context_(c),
-      binning_(c),
-      activate_(std::make_unique<gpu::Kernel<TrainActivateKernel>>(c)),
+      binning_(c, std::make_unique<gpu::Kernel<PreprocessTrainableKernel>>(c)),
       blend_(std::make_unique<gpu::Kernel<BlendTrainKernel>>(c)),
       choice_(form_for(sums, form)),
       sh_backward_(std::make_unique<gpu::Kernel<ShBackwardKernel>>(c)),
@@ -128,8 +130,6 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         frame_.ensure_entries(released_entries_ ? released_entries_
                                                 : std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
     if (gaussians > capacity_) {
-        render_params_ = gpu::Buffer();
-        render_params_ = gpu::Buffer(context_, uint64_t(gaussians) * 48, gpu::MemoryKind::device, "activated parameters");
         splat_grads_ = gpu::Buffer();
         splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes_,
                                    gpu::MemoryKind::device, "per-splat gradients");
@@ -147,8 +147,8 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
 void DifferentiableRenderer::release_scene_sized() {
     if (frame_.entry_capacity) released_entries_ = frame_.entry_capacity;
     frame_.release_scene_sized();
-    render_params_ = gpu::Buffer();
     splat_grads_ = gpu::Buffer();
+    sh_steps_ = gpu::Buffer();
     capacity_ = 0;
 }
 
@@ -164,10 +164,8 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     const uint32_t n = scene.layout.count;
     tiles_x_ = params.size[2];
     tiles_y_ = params.size[3];
-    stream.dispatch(*activate_, {.raw = scene.params.address(), .params = render_params_.address(), .count = n},
-                    gpu::groups_for(n));
-    // TileBinning's first barrier orders the activation before its preprocess.
-    binning_.record(stream, frame_, params, {render_params_.address(), scene.sh_address(), n});
+    // preprocess_trainable.comp reads the raw parameters and activates them as it reads them.
+    binning_.record(stream, frame_, params, {scene.params.address(), scene.sh_address(), n});
     auto& f = frame_;
     stream.dispatch(*blend_,
                     {.blend = render::blend_frame(f),
@@ -202,9 +200,16 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     else record_blend_backward(stream, backward);
     stream.barrier();
     stream.mark(blend_backward_stage(recorded_));
-    // The activated parameters are read only by the forward's preprocess: until the next step
-    // activates them again, their 48 bytes per Gaussian hold the 32 that the SH backward reads.
-    const VkDeviceAddress sh_steps = render_params_.address();
+    // What the SH backward reads of each Gaussian: in a training step it goes over the Gaussian's
+    // per-splat totals, which the geometry pass has read by then. Where the gradients are written
+    // out it has a buffer of its own, so that the totals stay for a caller to read (splat_grads()).
+    const uint32_t stride = kSplatGradStride * splat_grad_bytes_ / 4;
+    if (!adam && sh_steps_.size() < uint64_t(scene.layout.count) * stride * 4) {
+        sh_steps_ = gpu::Buffer();
+        sh_steps_ = gpu::Buffer(context_, uint64_t(capacity_) * stride * 4, gpu::MemoryKind::device,
+                                "SH backward's inputs");
+    }
+    const VkDeviceAddress sh_steps = adam ? splat_grads_.address() : sh_steps_.address();
     const PreprocessBackwardPush preprocess{.camera = f.camera.address(),
                                             .raw = scene.params.address(),
                                             .tiles_touched = f.tiles_touched.address(),
@@ -215,7 +220,8 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                             .densify = scene.densify.address(),
                                             .means_depth = f.means_depth.address(),
                                             .sh_steps = sh_steps,
-                                            .adam = adam};
+                                            .adam = adam,
+                                            .sh_step_stride = stride};
     const uint32_t groups = gpu::groups_for(scene.layout.count);
     if (preprocess_backward_fixed_) stream.dispatch(*preprocess_backward_fixed_, preprocess, groups);
     else stream.dispatch(*preprocess_backward_, preprocess, groups);
@@ -229,7 +235,8 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                      .counters = f.counters.address(),
                      .status = status_.address(),
                      .sh_steps = sh_steps,
-                     .adam = adam},
+                     .adam = adam,
+                     .sh_step_stride = stride},
                     gpu::groups_for(uint32_t((sh_floats + 3) / 4)));
     stream.barrier();
     stream.mark(adam ? "SH backward + Adam" : "SH backward");
@@ -271,8 +278,8 @@ uint32_t DifferentiableRenderer::status(int slot) const {
 }
 
 uint64_t DifferentiableRenderer::device_bytes() const {
-    return frame_.device_bytes() + render_params_.size() + splat_grads_.size() + transmittance_.size() +
-           last_.size() + status_.size();
+    return frame_.device_bytes() + splat_grads_.size() + sh_steps_.size() + transmittance_.size() + last_.size() +
+           status_.size();
 }
 
 void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Camera& camera,

@@ -1,13 +1,14 @@
 #pragma once
 // DifferentiableRenderer: the renderer's frame on a TrainableScene, keeping what the backward pass
-// needs, and that backward pass. Forward: activation -> TileBinning -> blend_train (the picture,
-// and per pixel the final transmittance and where its list walk ended). Backward, from dL/d rgb
+// needs, and that backward pass. Forward: TileBinning (with preprocess_trainable, which activates
+// the raw parameters as it reads them) -> blend_train (the picture, and per pixel the final
+// transmittance and where its list walk ended). Backward, from dL/d rgb
 // per pixel: blend_backward (per-splat gradients of mean, conic, opacity, colour; per pixel or per
 // splat, BlendBackward) -> preprocess_backward (gradients of the geometry) -> sh_backward (of the
 // SH coefficients). All are recorded into the caller's command stream, so a training step is one
 // submission. Kernels:
-// shaders/train/{train_activate,blend_train,blend_backward,blend_backward_cas,blend_backward_fixed,
-// blend_backward_per_splat,blend_backward_per_splat_cas,preprocess_backward,
+// shaders/train/{preprocess_trainable,blend_train,blend_backward,blend_backward_cas,
+// blend_backward_fixed,blend_backward_per_splat,blend_backward_per_splat_cas,preprocess_backward,
 // preprocess_backward_fixed,sh_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
 #include <array>
 #include <cstdint>
@@ -26,7 +27,6 @@
 
 namespace vksplat::shader::train {
 struct BlendBackwardPush;
-struct TrainActivateKernel;
 struct BlendTrainKernel;
 struct BlendBackwardKernel;
 struct BlendBackwardCasKernel;
@@ -138,7 +138,6 @@ private:
 
     const gpu::Context& context_;
     render::TileBinning binning_;
-    std::unique_ptr<gpu::Kernel<shader::train::TrainActivateKernel>> activate_;
     std::unique_ptr<gpu::Kernel<shader::train::BlendTrainKernel>> blend_;
     // With float atomics (per pixel and per splat), with compare-and-swap loops (both), or in
     // fixed point (per pixel, with the preprocess backward that reads its totals).
@@ -157,7 +156,8 @@ private:
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
     uint32_t released_entries_ = 0;  // the entry capacity before release_scene_sized()
     uint32_t pixel_capacity_ = 0;
-    gpu::Buffer render_params_, splat_grads_;      // per Gaussian
+    gpu::Buffer splat_grads_;                      // per Gaussian
+    gpu::Buffer sh_steps_;                         // per Gaussian, where gradients are written out
     uint32_t splat_grad_bytes_ = 4;                // a float each, or an int64 with fixed_point sums
     gpu::Buffer transmittance_, last_;             // per pixel
     gpu::Buffer status_;
