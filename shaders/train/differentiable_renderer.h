@@ -66,15 +66,12 @@ struct PreprocessBackwardPush {
     Uints status;        // [0]: STEP_ bits, [STATUS_OVERFLOW_MARK]: the overflow mark
     Floats densify;      // DENSIFY_STRIDE per Gaussian: what densification decides by
     Vec4s means_depth;   // the frame's projected splats: w is the radius in pixels
-    // out, for sh_backward.comp: per Gaussian, at sh_step_stride floats apart, SH_STEP_FLOATS
-    // floats: its view direction, 1 where its SH steps (0 where its gradient was not finite), and
-    // d L / d colour. In a training step this is splat_grads itself: each thread reads its
-    // Gaussian's totals before it writes over them.
-    Floats sh_steps;
+    // out, 2 per Gaussian: its view direction (w: 1 where its SH steps, 0 where its gradient was
+    // not finite) and d L / d colour, for sh_backward.comp
+    Vec4s sh_steps;
     // A training step's Adam settings (adam_step.h): the pass steps `raw` by its gradients instead
     // of writing them to `grads`. 0: write them (gradient checks, Fisher probes).
     OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
-    uint sh_step_stride;
 };
 
 // sh_backward.comp: one thread per SH float, four at a time, 256 per workgroup.
@@ -84,9 +81,8 @@ struct ShBackwardPush {
     Floats grads;        // out, where `adam` is 0
     Uints counters;
     Uints status;
-    Floats sh_steps;     // what preprocess_backward.comp left
+    Vec4s sh_steps;      // what preprocess_backward.comp left
     OPTIONAL_ADDRESS(AdamSettingsBuffer) adam;
-    uint sh_step_stride;
 };
 
 SHADER_NAMESPACE_END

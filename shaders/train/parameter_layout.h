@@ -31,9 +31,6 @@ SHADER_CONST(uint, SPLAT_GRAD_MEAN, 0u)
 SHADER_CONST(uint, SPLAT_GRAD_CONIC, 2u)
 SHADER_CONST(uint, SPLAT_GRAD_OPACITY, 5u)
 SHADER_CONST(uint, SPLAT_GRAD_COLOR, 6u)
-// What the preprocess backward leaves of a Gaussian for the SH backward (floats): its view
-// direction (3), 1 where its SH steps (0: its gradient was not finite), d L / d colour (3).
-TRAIN_CONST(SH_STEP_FLOATS, kShStepFloats, 7u)
 
 // What densification decides by, per Gaussian (floats), summed over the steps since the last
 // densification: the NDC gradient norm of its projected mean, the views it was drawn in, and the

@@ -13,8 +13,7 @@
 // the Jacobian's lateral position is clamped it no longer moves with the position, so it passes
 // no gradient there. Gaussians the frame did not draw get zeros.
 // The SH coefficients' gradients are basis(view direction) x d L / d colour: this pass leaves
-// each Gaussian's direction and colour gradient in pc.sh_steps (in a training step, over its own
-// per-splat totals, read by then), and sh_backward.comp takes them
+// each Gaussian's direction and colour gradient in pc.sh_steps, and sh_backward.comp takes them
 // one float a thread. In one pass they cost more than the two: this one needs ~200 registers,
 // which leaves too few threads on a multiprocessor to keep the SH block's loads in flight.
 // In a training step (pc.adam set) each gradient goes straight into Adam (adam.glsl) with the
@@ -279,13 +278,7 @@ void main() {
     if (fused()) adam = AdamSettingsBuffer(pc.adam).s;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
         const ShStep sh = backward(adam, cam, n, i);
-        const uint at = i * pc.sh_step_stride;  // SH_STEP_FLOATS of them
-        pc.sh_steps.v[at] = sh.dir.x;
-        pc.sh_steps.v[at + 1u] = sh.dir.y;
-        pc.sh_steps.v[at + 2u] = sh.dir.z;
-        pc.sh_steps.v[at + 3u] = sh.steps ? 1.0 : 0.0;
-        pc.sh_steps.v[at + 4u] = sh.dl_dcolor.r;
-        pc.sh_steps.v[at + 5u] = sh.dl_dcolor.g;
-        pc.sh_steps.v[at + 6u] = sh.dl_dcolor.b;
+        pc.sh_steps.v[2u * i] = vec4(sh.dir, sh.steps ? 1.0 : 0.0);
+        pc.sh_steps.v[2u * i + 1u] = vec4(sh.dl_dcolor, 0.0);
     }
 }

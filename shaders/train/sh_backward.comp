@@ -63,10 +63,9 @@ void main() {
         [[unroll]] for (uint u = 0u; u < 4u; ++u) {
             const uint j = j0 + u * stride;
             const uint g = min(j, floats - 1u) / sh_floats, within = j - g * sh_floats, k = within / 3u;
-            const uint at = g * pc.sh_step_stride;
-            const vec3 dir = vec3(pc.sh_steps.v[at], pc.sh_steps.v[at + 1u], pc.sh_steps.v[at + 2u]);
-            steps[u] = j < floats && pc.sh_steps.v[at + 3u] != 0.0;
-            grad[u] = k < used ? sh_basis_function(k, dir) * pc.sh_steps.v[at + 4u + within - 3u * k] : 0.0;
+            const vec4 dir = pc.sh_steps.v[2u * g];
+            steps[u] = j < floats && dir.w != 0.0;
+            grad[u] = k < used ? sh_basis_function(k, dir.xyz) * pc.sh_steps.v[2u * g + 1u][within - 3u * k] : 0.0;
             if (steps[u] && fused) state[u] = adam_load(adam, pc.raw, base + j);
         }
         [[unroll]] for (uint u = 0u; u < 4u; ++u) {

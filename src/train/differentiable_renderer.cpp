@@ -23,9 +23,6 @@ namespace vksplat::train {
 
 using namespace shader::train;
 
-// The SH backward's inputs go over a Gaussian's per-splat totals in a training step.
-static_assert(kShStepFloats <= kSplatGradStride);
-
 void BlendBackwardChoice::scene_size(uint32_t gaussians) {
     if (wanted_ != BlendBackward::fastest) return;
     if (per_pixel_ms_.empty() && per_splat_ms_.empty()) timed_gaussians_ = gaussians;
@@ -133,6 +130,8 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         splat_grads_ = gpu::Buffer();
         splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes_,
                                    gpu::MemoryKind::device, "per-splat gradients");
+        sh_steps_ = gpu::Buffer();
+        sh_steps_ = gpu::Buffer(context_, uint64_t(gaussians) * 32, gpu::MemoryKind::device, "SH backward's inputs");
         capacity_ = gaussians;
     }
     if (pixels > pixel_capacity_) {
@@ -200,16 +199,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     else record_blend_backward(stream, backward);
     stream.barrier();
     stream.mark(blend_backward_stage(recorded_));
-    // What the SH backward reads of each Gaussian: in a training step it goes over the Gaussian's
-    // per-splat totals, which the geometry pass has read by then. Where the gradients are written
-    // out it has a buffer of its own, so that the totals stay for a caller to read (splat_grads()).
-    const uint32_t stride = kSplatGradStride * splat_grad_bytes_ / 4;
-    if (!adam && sh_steps_.size() < uint64_t(scene.layout.count) * stride * 4) {
-        sh_steps_ = gpu::Buffer();
-        sh_steps_ = gpu::Buffer(context_, uint64_t(capacity_) * stride * 4, gpu::MemoryKind::device,
-                                "SH backward's inputs");
-    }
-    const VkDeviceAddress sh_steps = adam ? splat_grads_.address() : sh_steps_.address();
+    const VkDeviceAddress sh_steps = sh_steps_.address();
     const PreprocessBackwardPush preprocess{.camera = f.camera.address(),
                                             .raw = scene.params.address(),
                                             .tiles_touched = f.tiles_touched.address(),
@@ -220,8 +210,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                             .densify = scene.densify.address(),
                                             .means_depth = f.means_depth.address(),
                                             .sh_steps = sh_steps,
-                                            .adam = adam,
-                                            .sh_step_stride = stride};
+                                            .adam = adam};
     const uint32_t groups = gpu::groups_for(scene.layout.count);
     if (preprocess_backward_fixed_) stream.dispatch(*preprocess_backward_fixed_, preprocess, groups);
     else stream.dispatch(*preprocess_backward_, preprocess, groups);
@@ -235,8 +224,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                      .counters = f.counters.address(),
                      .status = status_.address(),
                      .sh_steps = sh_steps,
-                     .adam = adam,
-                     .sh_step_stride = stride},
+                     .adam = adam},
                     gpu::groups_for(uint32_t((sh_floats + 3) / 4)));
     stream.barrier();
     stream.mark(adam ? "SH backward + Adam" : "SH backward");

@@ -157,7 +157,7 @@ private:
     uint32_t released_entries_ = 0;  // the entry capacity before release_scene_sized()
     uint32_t pixel_capacity_ = 0;
     gpu::Buffer splat_grads_;                      // per Gaussian
-    gpu::Buffer sh_steps_;                         // per Gaussian, where gradients are written out
+    gpu::Buffer sh_steps_;                         // per Gaussian: what the SH backward reads
     uint32_t splat_grad_bytes_ = 4;                // a float each, or an int64 with fixed_point sums
     gpu::Buffer transmittance_, last_;             // per pixel
     gpu::Buffer status_;
