@@ -50,14 +50,14 @@ void FrameResources::ensure_gaussians(uint32_t count) {
         replace_sort_scratch(sort_scratch, c, std::max(count, entry_capacity));
 }
 
-void FrameResources::release_scene_sized() {
+void FrameResources::release() {
     for (gpu::Buffer* buffer :
          {&means_depth, &footprints, &colors, &tiles_touched, &depth_keys, &depth_values, &entry_offsets, &tile_keys,
-          &tile_values})
+          &tile_values, &color_alpha, &depth, &contributors, &readback, &ranges})
         *buffer = gpu::Buffer();
     scan_scratch.reset();
     sort_scratch.reset();
-    gaussian_capacity = entry_capacity = 0;
+    gaussian_capacity = entry_capacity = pixel_capacity = tile_capacity = 0;
 }
 
 void FrameResources::ensure_entries(uint32_t count) {

@@ -60,10 +60,10 @@ struct FrameResources {
     void ensure_stats(uint32_t count);
     void ensure_packed(uint32_t pixels);
     void ensure_carry(uint32_t pixels);
-    // Frees the buffers sized by the scene and by the tile entries (the image's stay), for a
-    // caller that needs the memory for a while: the trainer's densification holds the old and the
-    // new scene's arrays in turn. The next ensure_gaussians and ensure_entries allocate them anew.
-    void release_scene_sized();
+    // Frees every buffer (sized by the scene, the tile entries or the image), for a caller that
+    // needs the memory for a while: the trainer's densification holds the old and the new scene's
+    // arrays in turn. The next ensure_* calls allocate them anew.
+    void release();
     // Whether the ensure_* calls for these sizes would keep every buffer (reallocate none).
     bool fits(uint32_t gaussians, uint32_t pixels, uint32_t tiles, uint32_t entries) const;
     uint64_t device_bytes() const;

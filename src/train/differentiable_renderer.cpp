@@ -121,7 +121,7 @@ DifferentiableRenderer::~DifferentiableRenderer() = default;
 void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles) {
     frame_.ensure_gaussians(gaussians);
     frame_.ensure_image(pixels, tiles);
-    // The first frame starts from a few entries per Gaussian; after release_scene_sized() the
+    // The first frame starts from a few entries per Gaussian; after release_frame() the
     // capacity learned before comes back as it was (sized anew by the scene it could exceed it).
     if (frame_.entry_capacity == 0)
         frame_.ensure_entries(released_entries_ ? released_entries_
@@ -143,12 +143,14 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
     }
 }
 
-void DifferentiableRenderer::release_scene_sized() {
+void DifferentiableRenderer::release_frame() {
     if (frame_.entry_capacity) released_entries_ = frame_.entry_capacity;
-    frame_.release_scene_sized();
+    frame_.release();
     splat_grads_ = gpu::Buffer();
     sh_steps_ = gpu::Buffer();
-    capacity_ = 0;
+    transmittance_ = gpu::Buffer();
+    last_ = gpu::Buffer();
+    capacity_ = pixel_capacity_ = 0;
 }
 
 void DifferentiableRenderer::grow_entries(uint32_t needed) {

@@ -84,10 +84,10 @@ public:
     // start at a few per Gaussian and grow through grow_entries().
     void ensure(uint32_t gaussians, uint32_t pixels, uint32_t tiles);
     void grow_entries(uint32_t needed);
-    // Frees every buffer sized by the scene or the tile entries until the next ensure(), which
-    // allocates them again with the entry capacity learned so far: while the trainer densifies,
-    // their memory holds the old scene's arrays instead.
-    void release_scene_sized();
+    // Frees the frame's buffers (sized by the scene, the tile entries or the image) until the next
+    // ensure(), which allocates them again with the entry capacity learned so far: while the
+    // trainer densifies, their memory holds the old scene's arrays instead.
+    void release_frame();
     uint32_t entry_capacity() const { return frame_.entry_capacity; }
 
     // The forward frame of `scene` with `params` (its gaussian_count, sh_degree and entry
@@ -154,7 +154,7 @@ private:
     std::unique_ptr<gpu::Kernel<shader::train::ShBackwardKernel>> sh_backward_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
-    uint32_t released_entries_ = 0;  // the entry capacity before release_scene_sized()
+    uint32_t released_entries_ = 0;  // the entry capacity before release_frame()
     uint32_t pixel_capacity_ = 0;
     gpu::Buffer splat_grads_;                      // per Gaussian
     gpu::Buffer sh_steps_;                         // per Gaussian: what the SH backward reads

@@ -165,11 +165,11 @@ struct Trainer::Impl {
     void record(Slot& slot, bool again);
     // Waits for `slot`'s step and keeps its result; `queued` is the step submitted behind it, if any.
     void finish_step(Slot& slot, Slot* queued);
-    // Lays the scene out by `plan`. The renderer's scene-sized buffers are idle between steps and
-    // about as large as one of the arrays the plan gathers, so they make room for it (the next
-    // step allocates them again): changing the scene then holds no more than a step does.
+    // Lays the scene out by `plan`. The renderer's frame is idle between steps and about as large
+    // as one of the arrays the plan gathers, so it makes room for it (the next step allocates it
+    // again): changing the scene then holds no more than a step does.
     void change_scene(const DensifyPlan& plan) {
-        renderer.release_scene_sized();
+        renderer.release_frame();
         densify.apply(scene, plan);
     }
     // Densification that ran out of device memory leaves no scene (DensifyPasses::apply).
