@@ -1,8 +1,8 @@
 // Adam (Kingma & Ba), as torch.optim.Adam steps the reference trainer's parameter groups, one
 // parameter float at a time. preprocess_backward.comp and sh_backward.comp call it where they find
 // each gradient, so the gradients never go to memory: that saves an array the size of the
-// parameters, and a pass that reads four such arrays and writes three. Every parameter steps every iteration, also with a
-// zero gradient (its moments decay), as torch's dense Adam does.
+// parameters, and a pass that reads four such arrays and writes three. Every parameter steps
+// every iteration, also with a zero gradient (its moments decay), as torch's dense Adam does.
 // A step is split into loading a float's state and storing its update so that a thread can load
 // several floats' states before it stores any: the compiler may not move a load above a store
 // through another buffer reference (they might alias), so one float at a time would wait out a

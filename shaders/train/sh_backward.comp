@@ -71,10 +71,12 @@ void main() {
         [[unroll]] for (uint u = 0u; u < 4u; ++u) {
             const uint j = j0 + u * stride;
             if (!steps[u]) continue;
-            if (fused)
-                adam_store(adam, pc.raw, base + j, state[u], grad[u], j % sh_floats < 3u ? adam.lr_sh_dc : adam.lr_sh_rest);
-            else
+            if (!fused) {
                 pc.grads.v[base + j] = grad[u];
+                continue;
+            }
+            const float rate = j % sh_floats < 3u ? adam.lr_sh_dc : adam.lr_sh_rest;
+            adam_store(adam, pc.raw, base + j, state[u], grad[u], rate);
         }
     }
 }

@@ -2,9 +2,9 @@
 // TileBinning: every pass of a frame before the blend, from the scene's parameters to each tile's
 // depth-ordered list of splats: preprocess (which also keys every Gaussian for the depth sort, the
 // culled ones last), the depth sort, the tile entries, the stable tile sort and the tile ranges.
-// The renderer and the trainer both record it, then blend (and the trainer differentiates) what it leaves in the
-// FrameResources. Its kernels: shaders/render/{preprocess,clear_words,indirect_args,
-// emit_tile_entries,tile_ranges}.comp, their layouts in shaders/render/tile_binning.h.
+// The renderer and the trainer both record it, then blend (and the trainer differentiates) what
+// it leaves in the FrameResources. Its kernels: shaders/render/{preprocess,clear_words,
+// indirect_args,emit_tile_entries,tile_ranges}.comp, their layouts in shaders/render/tile_binning.h.
 #include <cstdint>
 #include <memory>
 
