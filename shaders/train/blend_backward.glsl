@@ -74,6 +74,12 @@ const uint BATCH = 256;
 void add_gradient(uint index, float value) {
     if (value == 0.0) return;
 #if FIXED_POINT_SUMS
+    // An integer holds no NaN nor infinity, and a conversion out of its range is undefined: the
+    // step is marked instead (parameter_layout.h), and nothing steps.
+    if (!(abs(value) < SPLAT_GRAD_FIXED_LIMIT)) {
+        atomicOr(pc.status.v[0], STEP_NONFINITE | STEP_NONFINITE_SUMS);
+        return;
+    }
     atomicAdd(Int64s(pc.splat_grads).v[index], int64_t(round(value * SPLAT_GRAD_FIXED_SCALE)));
 #elif FLOAT_ATOMICS
     atomicAdd(pc.splat_grads.v[index], value);

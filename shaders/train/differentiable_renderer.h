@@ -40,6 +40,7 @@ struct BlendBackwardPush {
     Uints last;            // per pixel: one past the last list position it blended
     Vec4s pixel_grad;      // per pixel: dL / d rgb
     Floats splat_grads;    // out, accumulated: SPLAT_GRAD_STRIDE per Gaussian
+    Uints status;          // the step's status: fixed-point sums set STEP_NONFINITE_SUMS there
 };
 
 // Deterministic sums (--deterministic): blend_backward_fixed.comp adds each splat's gradients as
@@ -48,6 +49,7 @@ struct BlendBackwardPush {
 // not; preprocess_backward_fixed.comp reads the totals. 64-bit integer types exist in GLSL only
 // with their extension, so only these two shaders declare them.
 SHADER_CONST(float, SPLAT_GRAD_FIXED_SCALE, 1099511627776.0)
+SHADER_CONST(float, SPLAT_GRAD_FIXED_LIMIT, 8.0e6)  // below 2^63 / SPLAT_GRAD_FIXED_SCALE
 #if !defined(__cplusplus) && FIXED_POINT_SUMS
 #extension GL_EXT_shader_explicit_arithmetic_types_int64 : require
 #extension GL_EXT_shader_atomic_int64 : require

@@ -47,6 +47,10 @@ TRAIN_CONST(STEP_NONFINITE, kStepNonfinite, 1u)    // some gradient was NaN or i
 // step recorded before its predecessor overflowed must change nothing either, and is run again
 // after it.
 TRAIN_CONST(STEP_OVERFLOWED, kStepOverflowed, 2u)
+// With fixed-point sums (blend_backward_fixed.comp): a gradient the integers cannot hold (NaN,
+// infinite or beyond SPLAT_GRAD_FIXED_LIMIT) reached some splat's totals. Which Gaussians it
+// reached is lost with it, so no Gaussian steps; STEP_NONFINITE is set with it.
+TRAIN_CONST(STEP_NONFINITE_SUMS, kStepNonfiniteSums, 4u)
 // status[1], the overflow mark: set by a step whose frame overflowed, cleared only by the host when
 // it records the step again (DifferentiableRenderer::record_backward's clear_overflow_mark).
 TRAIN_CONST(STATUS_OVERFLOW_MARK, kStatusOverflowMark, 1u)

@@ -274,6 +274,8 @@ void main() {
         }
         return;
     }
+    // The fixed-point sums lost a gradient they could not hold (parameter_layout.h): nothing steps.
+    if (fused() && (pc.status.v[0] & STEP_NONFINITE_SUMS) != 0u) return;
     AdamSettings adam;
     if (fused()) adam = AdamSettingsBuffer(pc.adam).s;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {

@@ -44,11 +44,12 @@ float sh_basis_function(uint k, vec3 dir) {
 
 void main() {
     const CameraParams cam = pc.camera.c;
-    // preprocess_backward.comp stepped nothing in a frame that overflowed, nor behind one, and
-    // left no directions.
+    // preprocess_backward.comp stepped nothing in a frame that overflowed, nor behind one, nor
+    // where the fixed-point sums lost a gradient, and left no directions.
     if (pc.counters.v[COUNTER_ENTRIES_NEEDED] > cam.entry_capacity || pc.status.v[STATUS_OVERFLOW_MARK] != 0u)
         return;
     const bool fused = (pc.adam.x | pc.adam.y) != 0u;
+    if (fused && (pc.status.v[0] & STEP_NONFINITE_SUMS) != 0u) return;  // as preprocess_backward.comp
     AdamSettings adam;
     if (fused) adam = AdamSettingsBuffer(pc.adam).s;
     const uint n = cam.gaussian_count;

@@ -196,7 +196,8 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                      .transmittance = transmittance_.address(),
                                      .last = last_.address(),
                                      .pixel_grad = pixel_grad,
-                                     .splat_grads = splat_grads_.address()};
+                                     .splat_grads = splat_grads_.address(),
+                                     .status = status_.address()};
     if (blend_backward_fixed_) stream.dispatch(*blend_backward_fixed_, backward, tiles_x_, tiles_y_);
     else record_blend_backward(stream, backward);
     stream.barrier();

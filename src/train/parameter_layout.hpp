@@ -23,6 +23,7 @@ struct ParameterLayout {
 using shader::train::kDensifyStride;   // gradient norm sum, views, max radius
 using shader::train::kSplatGradStride;
 using shader::train::kStepNonfinite;
+using shader::train::kStepNonfiniteSums;
 using shader::train::kStepOverflowed;
 using shader::train::kStatusWords;
 

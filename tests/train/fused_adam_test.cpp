@@ -43,6 +43,22 @@ uint32_t fused_step(const gpu::Context& context, const train::TrainableScene& sc
     return renderer.status();
 }
 
+// Adam at its first step's bias corrections, every rate 1e-3, no regularisers.
+shader::train::AdamSettings first_step_adam() {
+    return {.first_moment = {}, .second_moment = {},
+            .lr_position = 1e-3f, .lr_scale = 1e-3f, .lr_rotation = 1e-3f,
+            .lr_opacity = 1e-3f, .lr_sh_dc = 1e-3f, .lr_sh_rest = 1e-3f,
+            .beta1 = 0.9f, .beta2 = 0.999f, .epsilon = 1e-15f,
+            .bias_correction1 = 0.1f, .bias_correction2 = 0.001f,
+            .opacity_regularization = 0.0f, .scale_regularization = 0.0f};
+}
+
+// Zero moments for `cloud`'s layout.
+GaussianCloud zero_moments(const GaussianCloud& cloud) {
+    const std::vector<float> zeros(train::pack_parameters(cloud).size(), 0.0f);
+    return train::unpack_parameters(zeros, uint32_t(cloud.size()), cloud.sh_degree);
+}
+
 std::vector<float> random_values(size_t n, uint32_t seed, float lo, float hi) {
     std::mt19937 rng(seed);
     std::vector<float> values(n);
@@ -140,7 +156,7 @@ TEST_F(FusedAdam, StepsAsAdamOnTheWrittenGradients) {
 // finite (as the written gradients show) keep their parameters and moments, every other Gaussian
 // steps, and the step's status says a gradient was not finite.
 TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
-    // Float sums: fixed-point ones would turn the NaN into a number.
+    // Float sums: fixed-point ones cannot say which Gaussians a NaN reached (the next test).
     const GaussianCloud cloud = random_scene(12, 200, 1, 3.0f, 7.0f, 0.02f, 0.1f, 0.8f);
     const Camera camera = forward_camera(64, 48, 60.0);
     const uint32_t pixels = render::image_extent(camera).pixels;
@@ -149,16 +165,10 @@ TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
     const auto gradient = train::pack_parameters(
         train::render_gradients(context(), cloud, camera, {}, weights, train::GradientSums::device_default).gradient);
 
-    const std::vector<float> zeros(train::pack_parameters(cloud).size(), 0.0f);
-    const GaussianCloud zero_moments = train::unpack_parameters(zeros, uint32_t(cloud.size()), cloud.sh_degree);
-    const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zero_moments, &zero_moments);
-    const shader::train::AdamSettings adam{.first_moment = {}, .second_moment = {},
-                                           .lr_position = 1e-3f, .lr_scale = 1e-3f, .lr_rotation = 1e-3f,
-                                           .lr_opacity = 1e-3f, .lr_sh_dc = 1e-3f, .lr_sh_rest = 1e-3f,
-                                           .beta1 = 0.9f, .beta2 = 0.999f, .epsilon = 1e-15f,
-                                           .bias_correction1 = 0.1f, .bias_correction2 = 0.001f,
-                                           .opacity_regularization = 0.0f, .scale_regularization = 0.0f};
-    EXPECT_NE(fused_step(context(), scene, camera, {}, weights, adam, train::GradientSums::device_default) &
+    const GaussianCloud zeros = zero_moments(cloud);
+    const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zeros, &zeros);
+    EXPECT_NE(fused_step(context(), scene, camera, {}, weights, first_step_adam(),
+                         train::GradientSums::device_default) &
                   train::kStepNonfinite,
               0u);
     const auto params = train::pack_parameters(scene.download(context()));
@@ -190,6 +200,34 @@ TEST_F(FusedAdam, AGaussianWithANonFiniteGradientAloneDoesNotStep) {
     }
     EXPECT_GT(kept, 0u);
     EXPECT_GT(stepped, kept);
+}
+
+// Fixed-point sums cannot carry a NaN (nor an infinity) to the totals of the Gaussians it reached,
+// so which ones it reached is lost: the step's status says so, and no Gaussian steps. Without the
+// NaN the same step moves them.
+TEST_F(FusedAdam, WithFixedPointSumsANonFiniteGradientStopsTheWholeStep) {
+    if (!context().info().int64_atomics) GTEST_SKIP() << "no 64-bit buffer atomics on this device";
+    const GaussianCloud cloud = random_scene(12, 200, 1, 3.0f, 7.0f, 0.02f, 0.1f, 0.8f);
+    const Camera camera = forward_camera(64, 48, 60.0);
+    const uint32_t pixels = render::image_extent(camera).pixels;
+    const auto raw = train::pack_parameters(cloud);
+    const GaussianCloud zeros = zero_moments(cloud);
+    for (const bool nan : {true, false}) {
+        SCOPED_TRACE(nan ? "a NaN in one pixel" : "no NaN");
+        std::vector<float> weights(size_t(pixels) * 3, 0.1f);
+        if (nan) weights[(24 * 64 + 32) * 3] = std::nanf("");
+        const train::TrainableScene scene = train::TrainableScene::upload(context(), cloud, &zeros, &zeros);
+        const uint32_t status =
+            fused_step(context(), scene, camera, {}, weights, first_step_adam(), train::GradientSums::fixed_point);
+        EXPECT_EQ(status & train::kStepNonfinite, nan ? train::kStepNonfinite : 0u);
+        EXPECT_EQ(status & train::kStepNonfiniteSums, nan ? train::kStepNonfiniteSums : 0u);
+        const auto params = train::pack_parameters(scene.download(context()));
+        const auto m1 = train::pack_parameters(scene.download(context(), scene.first_moment));
+        size_t moved = 0;
+        for (size_t i = 0; i < raw.size(); ++i) moved += params[i] != raw[i] || m1[i] != 0.0f;
+        if (nan) EXPECT_EQ(moved, 0u);
+        else EXPECT_GT(moved, raw.size() / 2);
+    }
 }
 
 }  // namespace

@@ -113,7 +113,9 @@ struct Photo {
 
 struct StepResult {
     // false: some Gaussian's gradient was not finite; those Gaussians did not step (their
-    // parameters and Adam's moments are as they were), the others did. Counted as skipped.
+    // parameters and Adam's moments are as they were), the others did, but with fixed-point
+    // sums (the default), which cannot carry a NaN to the Gaussians it reached: then no Gaussian
+    // stepped. Counted as skipped.
     bool applied = true;
     double loss = 0;         // (1 - lambda) l1 + lambda (1 - ssim)
     double l1 = 0;
