@@ -36,8 +36,8 @@ namespace fs = std::filesystem;
 // preprocess reads them raw, so there is no activated copy either); per-splat gradient sums 72
 // (64-bit fixed point; 36 as floats), the SH backward's inputs 32, densification sums 12, and the
 // frame's per-Gaussian arrays (about 100 bytes) with some tile entries (8 bytes each for keys and
-// values, twice for the sort's ping-pong, ~6 per Gaussian). Densification holds no more: it frees the frame's and the
-// per-splat arrays while it gathers one array at a time.
+// values, twice for the sort's ping-pong, ~6 per Gaussian). Densification holds no more: it frees
+// the frame's and the per-splat arrays while it gathers one array at a time.
 constexpr uint64_t kParameterCopies = 3;
 constexpr uint64_t kFixedBytesPerGaussian = kParameterCopies * 11 * 4 + 72 + 32 + 12 + 100 + 6 * 16;
 // Per pixel: the frame's colour, depth and count, the trainer's transmittance, last position,

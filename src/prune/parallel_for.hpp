@@ -12,9 +12,9 @@ namespace vksplat::prune {
 
 // Runs fn(item, worker) for item in [0, count) on `workers` threads (at least one), worker w
 // taking the items w, w + workers, ...: which worker sums which item depends on nothing but the
-// count of workers, so the sums are the same every run on one machine. The first exception an item throws is
-// thrown again once every thread has stopped (a thread's own would end the process); the other
-// items of that worker are skipped.
+// count of workers, so the sums are the same every run on one machine. The first exception an
+// item throws is thrown again once every thread has stopped (a thread's own would end the
+// process); the other items of that worker are skipped.
 template <typename Fn>
 void parallel_for(size_t count, unsigned workers, Fn fn) {
     workers = std::max(1u, workers);

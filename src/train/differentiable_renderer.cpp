@@ -89,8 +89,7 @@ DifferentiableRenderer::DifferentiableRenderer(const gpu::Context& c, GradientSu
             throw InputError("--deterministic", c.info().name + " has no 64-bit buffer atomics, which its "
                                                 "order-independent gradient sums need");
         blend_backward_fixed_ = std::make_unique<gpu::Kernel<BlendBackwardFixedKernel>>(c);
-        preprocess_backward_fixed_ = std::make_unique<gpu::Kernel<PreprocessBackwardFixedKernel>>(c);
-        splat_grad_bytes_ = 8;
+        preprocess_backward_ = std::make_unique<gpu::Kernel<PreprocessBackwardFixedKernel>>(c);
     } else {
         preprocess_backward_ = std::make_unique<gpu::Kernel<PreprocessBackwardKernel>>(c);
     }
@@ -128,7 +127,7 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
                                                 : std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
     if (gaussians > capacity_) {
         splat_grads_ = gpu::Buffer();
-        splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes_,
+        splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes(),
                                    gpu::MemoryKind::device, "per-splat gradients");
         sh_steps_ = gpu::Buffer();
         sh_steps_ = gpu::Buffer(context_, uint64_t(gaussians) * 32, gpu::MemoryKind::device, "SH backward's inputs");
@@ -185,7 +184,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
     choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
     const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
-    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * splat_grad_bytes_);
+    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * splat_grad_bytes());
     stream.fill(status_, 0, 0, clear_overflow_mark ? VK_WHOLE_SIZE : sizeof(uint32_t));
     stream.barrier();
     const BlendBackwardPush backward{.camera = f.camera.address(),
@@ -214,9 +213,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                                             .means_depth = f.means_depth.address(),
                                             .sh_steps = sh_steps,
                                             .adam = adam};
-    const uint32_t groups = gpu::groups_for(scene.layout.count);
-    if (preprocess_backward_fixed_) stream.dispatch(*preprocess_backward_fixed_, preprocess, groups);
-    else stream.dispatch(*preprocess_backward_, preprocess, groups);
+    stream.dispatch(*preprocess_backward_, preprocess, gpu::groups_for(scene.layout.count));
     stream.barrier();
     stream.mark(adam ? "preprocess backward + Adam" : "preprocess backward");
     const uint64_t sh_floats = uint64_t(scene.layout.count) * scene.layout.sh_coefficients * 3;

@@ -33,9 +33,8 @@ struct BlendBackwardCasKernel;
 struct BlendBackwardFixedKernel;
 struct BlendBackwardPerSplatKernel;
 struct BlendBackwardPerSplatCasKernel;
-struct PreprocessBackwardFixedKernel;
+struct PreprocessBackwardPush;
 struct ShBackwardKernel;
-struct PreprocessBackwardKernel;
 }  // namespace vksplat::shader::train
 
 namespace vksplat::train {
@@ -133,6 +132,8 @@ public:
     uint64_t device_bytes() const;
 
 private:
+    // Bytes of one per-splat total: a float, or an int64 with fixed_point sums.
+    uint32_t splat_grad_bytes() const { return blend_backward_fixed_ ? 8 : 4; }
     // The float-sum blend backward in recorded_'s form.
     void record_blend_backward(gpu::CommandStream& stream, const shader::train::BlendBackwardPush& push);
 
@@ -149,8 +150,8 @@ private:
     bool float_atomics_ = false;  // else compare-and-swap loops (or fixed point)
     BlendBackwardChoice choice_;
     BlendBackward recorded_ = BlendBackward::per_pixel;  // the form the last record_backward ran
-    std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardKernel>> preprocess_backward_;
-    std::unique_ptr<gpu::Kernel<shader::train::PreprocessBackwardFixedKernel>> preprocess_backward_fixed_;
+    // Reads the blend backward's totals as floats, or as fixed-point integers.
+    std::unique_ptr<gpu::PushKernel<shader::train::PreprocessBackwardPush>> preprocess_backward_;
     std::unique_ptr<gpu::Kernel<shader::train::ShBackwardKernel>> sh_backward_;
     render::FrameResources frame_;
     uint32_t capacity_ = 0;  // Gaussians the per-splat buffers below hold
@@ -158,7 +159,6 @@ private:
     uint32_t pixel_capacity_ = 0;
     gpu::Buffer splat_grads_;                      // per Gaussian
     gpu::Buffer sh_steps_;                         // per Gaussian: what the SH backward reads
-    uint32_t splat_grad_bytes_ = 4;                // a float each, or an int64 with fixed_point sums
     gpu::Buffer transmittance_, last_;             // per pixel
     gpu::Buffer status_;
     std::array<gpu::Buffer, kReadbackSlots> readbacks_;
