@@ -22,8 +22,11 @@
 // The window is symmetric, and the sum runs over the image's pixels p only, so the adjoint of the
 // zero-padded filter is the same filter over planes that are 0 outside the image.
 //
-// A workgroup owns a strip of SEGMENT_TILES tiles of 32 x 8 pixels, one above the other, and
-// walks down it channel by channel (grid-stride over strips). The gradient of a tile needs A, B, C
+// A workgroup owns one channel of a strip of SEGMENT_TILES tiles of 32 x 8 pixels, one above the
+// other, and walks down it (grid-stride over strips x channels). Channels are independent, so
+// three workgroups share a strip rather than one walking it three times: a workgroup's bands are
+// a chain of barriers, and a 0.4-megapixel photo has only ~225 strips, too few to fill a large GPU
+// when each walks 27 bands. The gradient of a tile needs A, B, C
 // over the tile's columns plus 5 each side and its rows plus 5 above and below; those need x and y
 // over 5 more. The workgroup computes all of it in shared memory, so no per-pixel map leaves the
 // chip and the loss is one dispatch. Walking down, each band of rows is filtered once: the filters
@@ -122,126 +125,127 @@ void main() {
     const uint ssim_run = thread % SSIM_RUNS, ssim_row = thread / SSIM_RUNS;
     const uint plane_run = thread % PLANE_RUNS, plane_row = thread / PLANE_RUNS;
 
-    for (uint strip = gl_WorkGroupID.x; strip < pc.strips; strip += gl_NumWorkGroups.x) {
+    for (uint work = gl_WorkGroupID.x; work < 3u * pc.strips; work += gl_NumWorkGroups.x) {
+        // The three channels of a strip go to neighbouring workgroups, which read the same lines.
+        const uint strip = work / 3u, ch = work % 3u;
         const int left = int(strip % pc.tiles_x * TILE_WIDTH);
         const int top = int(strip / pc.tiles_x * SEGMENT_TILES * TILE_HEIGHT);
         const uint tiles = min(SEGMENT_TILES, pc.tiles_y - strip / pc.tiles_x * SEGMENT_TILES);
         const int bottom = min(top + int(tiles * TILE_HEIGHT), int(pc.height));  // the strip's rows end here
 
-        [[unroll]] for (uint ch = 0u; ch < 3u; ++ch) {
-            // Band -1 is rows top - 5 .. top + 4, which the first tile needs from above and
-            // beside; band t >= 0 is the rows from 5 below tile t's first to 5 below its last,
-            // after which tile t has all it needs.
-            for (int band = -1; band < int(tiles); ++band) {
-                const int first = band < 0 ? top - RADIUS : top + band * int(TILE_HEIGHT) + RADIUS;
-                const uint rows = band < 0 ? FIRST_BAND : TILE_HEIGHT;
+        // Band -1 is rows top - 5 .. top + 4, which the first tile needs from above and
+        // beside; band t >= 0 is the rows from 5 below tile t's first to 5 below its last,
+        // after which tile t has all it needs.
+        for (int band = -1; band < int(tiles); ++band) {
+            const int first = band < 0 ? top - RADIUS : top + band * int(TILE_HEIGHT) + RADIUS;
+            const uint rows = band < 0 ? FIRST_BAND : TILE_HEIGHT;
 
-                // 1. G along columns of x, y, x^2 + y^2 and xy: a run of rows of one input column.
-                // Pixels outside the image read as 0 (the zero padding of the reference's
-                // F.conv2d(padding = 5)).
-                if (thread < MOMENT_COLUMNS && moment_run * MOMENT_RUN < rows) {
-                    vec4 products[MOMENT_RUN + TAPS - 1];
-                    [[unroll]] for (uint k = 0u; k < MOMENT_RUN + TAPS - 1; ++k) {
-                        const ivec2 p = ivec2(left - 2 * RADIUS + int(moment_column),
-                                              first - RADIUS + int(moment_run * MOMENT_RUN + k));
-                        vec2 v = vec2(0.0);
-                        if (inside(p)) {
-                            const uint j = pixel_index(p);
-                            v = vec2(pc.rendered.v[j][ch], photo_channel(pc.photo.v[j], ch));
-                        }
-                        products[k] = vec4(v, dot(v, v), v.x * v.y);
+            // 1. G along columns of x, y, x^2 + y^2 and xy: a run of rows of one input column.
+            // Pixels outside the image read as 0 (the zero padding of the reference's
+            // F.conv2d(padding = 5)).
+            if (thread < MOMENT_COLUMNS && moment_run * MOMENT_RUN < rows) {
+                vec4 products[MOMENT_RUN + TAPS - 1];
+                [[unroll]] for (uint k = 0u; k < MOMENT_RUN + TAPS - 1; ++k) {
+                    const ivec2 p = ivec2(left - 2 * RADIUS + int(moment_column),
+                                          first - RADIUS + int(moment_run * MOMENT_RUN + k));
+                    vec2 v = vec2(0.0);
+                    if (inside(p)) {
+                        const uint j = pixel_index(p);
+                        v = vec2(pc.rendered.v[j][ch], photo_channel(pc.photo.v[j], ch));
                     }
-                    [[unroll]] for (uint i = 0u; i < MOMENT_RUN; ++i) {
-                        const uint row = moment_run * MOMENT_RUN + i;
-                        if (row >= rows) break;  // the last run's tail
-                        vec4 sum = vec4(0.0);
-                        [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * products[i + k];
-                        const uint at = row * MOMENT_PITCH + moment_column;
-                        [[unroll]] for (uint m = 0u; m < 4u; ++m) scratch[at + m * MOMENT_PLANE] = sum[m];
-                    }
+                    products[k] = vec4(v, dot(v, v), v.x * v.y);
                 }
-                barrier();
-                // 2. Then along rows: the moments, the SSIM terms and A, B, C.
-                vec3 abc[SSIM_RUN];
-                if (thread < SSIM_ROWS && ssim_row < rows) {
-                    vec4 columns[SSIM_RUN + TAPS - 1];
-                    [[unroll]] for (uint k = 0u; k < SSIM_RUN + TAPS - 1; ++k) {
-                        const uint at = ssim_row * MOMENT_PITCH + ssim_run * SSIM_RUN + k;
-                        columns[k] = vec4(scratch[at], scratch[at + MOMENT_PLANE], scratch[at + 2u * MOMENT_PLANE],
-                                          scratch[at + 3u * MOMENT_PLANE]);
-                    }
-                    [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
-                        const ivec2 p = ivec2(left - RADIUS + int(ssim_run * SSIM_RUN + i), first + int(ssim_row));
-                        // 0 outside the image, where s has no term, so that A, B, C are 0 there.
-                        const float mask = inside(p) ? photo_mask(pc.photo.v[pixel_index(p)]) : 0.0;
-                        vec4 moments = vec4(0.0);
-                        [[unroll]] for (uint k = 0u; k < TAPS; ++k) moments += WINDOW[k] * columns[i + k];
-                        const float mu_x = moments.x, mu_y = moments.y;
-                        const float a = 2.0 * mu_x * mu_y + SSIM_C1, b = 2.0 * (moments.w - mu_x * mu_y) + SSIM_C2;
-                        const float c = mu_x * mu_x + mu_y * mu_y + SSIM_C1;
-                        const float d = moments.z - mu_x * mu_x - mu_y * mu_y + SSIM_C2;
-                        const float inv_cd = 1.0 / (c * d);  // the one division: 1/c = d inv_cd, 1/d = c inv_cd
-                        const float s = a * b * inv_cd;
-                        const float ds_dd = -s * c * inv_cd;
-                        const float ds_dcov = 2.0 * a * inv_cd;
-                        const float ds_dmu_x = 2.0 * b * inv_cd * (mu_y - mu_x * a * d * inv_cd);
-                        const float w = -pc.ssim_weight * mask * pc.inv_count;
-                        abc[i] = w * vec3(ds_dmu_x - 2.0 * mu_x * ds_dd - mu_y * ds_dcov, ds_dd, ds_dcov);
-                        // The strip's own pixels' terms (the others belong to other strips).
-                        if (p.x >= left && p.x < left + int(TILE_WIDTH) && p.y >= top && p.y < bottom)
-                            ssim_sum += mask * s;
-                    }
+                [[unroll]] for (uint i = 0u; i < MOMENT_RUN; ++i) {
+                    const uint row = moment_run * MOMENT_RUN + i;
+                    if (row >= rows) break;  // the last run's tail
+                    vec4 sum = vec4(0.0);
+                    [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * products[i + k];
+                    const uint at = row * MOMENT_PITCH + moment_column;
+                    [[unroll]] for (uint m = 0u; m < 4u; ++m) scratch[at + m * MOMENT_PLANE] = sum[m];
                 }
-                barrier();  // every invocation is done reading the moments, which A, B, C overwrite
-                if (thread < SSIM_ROWS && ssim_row < rows) {
-                    [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
-                        const uint at = ssim_row * ABC_PITCH + ssim_run * SSIM_RUN + i;
-                        scratch[at] = abc[i].x;
-                        scratch[at + ABC_PLANE] = abc[i].y;
-                        scratch[at + 2u * ABC_PLANE] = abc[i].z;
-                    }
+            }
+            barrier();
+            // 2. Then along rows: the moments, the SSIM terms and A, B, C.
+            vec3 abc[SSIM_RUN];
+            if (thread < SSIM_ROWS && ssim_row < rows) {
+                vec4 columns[SSIM_RUN + TAPS - 1];
+                [[unroll]] for (uint k = 0u; k < SSIM_RUN + TAPS - 1; ++k) {
+                    const uint at = ssim_row * MOMENT_PITCH + ssim_run * SSIM_RUN + k;
+                    columns[k] = vec4(scratch[at], scratch[at + MOMENT_PLANE], scratch[at + 2u * MOMENT_PLANE],
+                                      scratch[at + 3u * MOMENT_PLANE]);
                 }
-                barrier();
-                // 3. G of A, B, C along rows, for the tile's columns, into the ring (whose lines
-                // the last tile's gradient read before the barriers above).
-                if (thread < PLANE_ROWS && plane_row < rows) {
-                    vec3 planes[PLANE_RUN + TAPS - 1];
-                    [[unroll]] for (uint k = 0u; k < PLANE_RUN + TAPS - 1; ++k) {
-                        const uint at = plane_row * ABC_PITCH + plane_run * PLANE_RUN + k;
-                        planes[k] = vec3(scratch[at], scratch[at + ABC_PLANE], scratch[at + 2u * ABC_PLANE]);
-                    }
-                    const uint line = RING_OFFSET + ring_line(first + int(plane_row), top) * TILE_WIDTH;
-                    [[unroll]] for (uint i = 0u; i < PLANE_RUN; ++i) {
-                        vec3 sum = vec3(0.0);
-                        [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * planes[i + k];
-                        const uint at = line + plane_run * PLANE_RUN + i;
-                        scratch[at] = sum.x;
-                        scratch[at + RING_PLANE] = sum.y;
-                        scratch[at + 2u * RING_PLANE] = sum.z;
-                    }
+                [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
+                    const ivec2 p = ivec2(left - RADIUS + int(ssim_run * SSIM_RUN + i), first + int(ssim_row));
+                    // 0 outside the image, where s has no term, so that A, B, C are 0 there.
+                    const float mask = inside(p) ? photo_mask(pc.photo.v[pixel_index(p)]) : 0.0;
+                    vec4 moments = vec4(0.0);
+                    [[unroll]] for (uint k = 0u; k < TAPS; ++k) moments += WINDOW[k] * columns[i + k];
+                    const float mu_x = moments.x, mu_y = moments.y;
+                    const float a = 2.0 * mu_x * mu_y + SSIM_C1, b = 2.0 * (moments.w - mu_x * mu_y) + SSIM_C2;
+                    const float c = mu_x * mu_x + mu_y * mu_y + SSIM_C1;
+                    const float d = moments.z - mu_x * mu_x - mu_y * mu_y + SSIM_C2;
+                    const float inv_cd = 1.0 / (c * d);  // the one division: 1/c = d inv_cd, 1/d = c inv_cd
+                    const float s = a * b * inv_cd;
+                    const float ds_dd = -s * c * inv_cd;
+                    const float ds_dcov = 2.0 * a * inv_cd;
+                    const float ds_dmu_x = 2.0 * b * inv_cd * (mu_y - mu_x * a * d * inv_cd);
+                    const float w = -pc.ssim_weight * mask * pc.inv_count;
+                    abc[i] = w * vec3(ds_dmu_x - 2.0 * mu_x * ds_dd - mu_y * ds_dcov, ds_dd, ds_dcov);
+                    // The strip's own pixels' terms (the others belong to other strips).
+                    if (p.x >= left && p.x < left + int(TILE_WIDTH) && p.y >= top && p.y < bottom)
+                        ssim_sum += mask * s;
                 }
-                barrier();
-                if (band < 0) continue;
-                // 4. Tile `band` has its rows: G along columns at this invocation's pixel.
-                const ivec2 pixel = ivec2(left, top + band * int(TILE_HEIGHT)) + ivec2(local);
-                vec3 filtered = vec3(0.0);
-                [[unroll]] for (uint k = 0u; k < TAPS; ++k) {
-                    const uint at = RING_OFFSET + ring_line(pixel.y - RADIUS + int(k), top) * TILE_WIDTH + local.x;
-                    filtered += WINDOW[k] * vec3(scratch[at], scratch[at + RING_PLANE], scratch[at + 2u * RING_PLANE]);
+            }
+            barrier();  // every invocation is done reading the moments, which A, B, C overwrite
+            if (thread < SSIM_ROWS && ssim_row < rows) {
+                [[unroll]] for (uint i = 0u; i < SSIM_RUN; ++i) {
+                    const uint at = ssim_row * ABC_PITCH + ssim_run * SSIM_RUN + i;
+                    scratch[at] = abc[i].x;
+                    scratch[at + ABC_PLANE] = abc[i].y;
+                    scratch[at + 2u * ABC_PLANE] = abc[i].z;
                 }
-                if (inside(pixel)) {
-                    const uint index = pixel_index(pixel);
-                    const float x = pc.rendered.v[index][ch];
-                    const uint word = pc.photo.v[index];
-                    const float y = photo_channel(word, ch), mask = photo_mask(word);
-                    // The L1 term; sign(0) = 0, like torch's.
-                    const float gradient =
-                        l1_weight * mask * sign(x - y) + filtered.x + 2.0 * x * filtered.y + y * filtered.z;
-                    if (ch == 0u) pc.gradient.v[index] = vec4(gradient, 0.0, 0.0, 0.0);
-                    else pc.gradient.v[index][ch] = gradient;
-                    l1_sum += mask * abs(x - y);
-                    mse_sum += mask * (x - y) * (x - y);
+            }
+            barrier();
+            // 3. G of A, B, C along rows, for the tile's columns, into the ring (whose lines
+            // the last tile's gradient read before the barriers above).
+            if (thread < PLANE_ROWS && plane_row < rows) {
+                vec3 planes[PLANE_RUN + TAPS - 1];
+                [[unroll]] for (uint k = 0u; k < PLANE_RUN + TAPS - 1; ++k) {
+                    const uint at = plane_row * ABC_PITCH + plane_run * PLANE_RUN + k;
+                    planes[k] = vec3(scratch[at], scratch[at + ABC_PLANE], scratch[at + 2u * ABC_PLANE]);
                 }
+                const uint line = RING_OFFSET + ring_line(first + int(plane_row), top) * TILE_WIDTH;
+                [[unroll]] for (uint i = 0u; i < PLANE_RUN; ++i) {
+                    vec3 sum = vec3(0.0);
+                    [[unroll]] for (uint k = 0u; k < TAPS; ++k) sum += WINDOW[k] * planes[i + k];
+                    const uint at = line + plane_run * PLANE_RUN + i;
+                    scratch[at] = sum.x;
+                    scratch[at + RING_PLANE] = sum.y;
+                    scratch[at + 2u * RING_PLANE] = sum.z;
+                }
+            }
+            barrier();
+            if (band < 0) continue;
+            // 4. Tile `band` has its rows: G along columns at this invocation's pixel.
+            const ivec2 pixel = ivec2(left, top + band * int(TILE_HEIGHT)) + ivec2(local);
+            vec3 filtered = vec3(0.0);
+            [[unroll]] for (uint k = 0u; k < TAPS; ++k) {
+                const uint at = RING_OFFSET + ring_line(pixel.y - RADIUS + int(k), top) * TILE_WIDTH + local.x;
+                filtered += WINDOW[k] * vec3(scratch[at], scratch[at + RING_PLANE], scratch[at + 2u * RING_PLANE]);
+            }
+            if (inside(pixel)) {
+                const uint index = pixel_index(pixel);
+                const float x = pc.rendered.v[index][ch];
+                const uint word = pc.photo.v[index];
+                const float y = photo_channel(word, ch), mask = photo_mask(word);
+                // The L1 term; sign(0) = 0, like torch's.
+                const float gradient =
+                    l1_weight * mask * sign(x - y) + filtered.x + 2.0 * x * filtered.y + y * filtered.z;
+                // Each channel's workgroup writes its own float; the first also clears w.
+                pc.gradient.v[index][ch] = gradient;
+                if (ch == 0u) pc.gradient.v[index].w = 0.0;
+                l1_sum += mask * abs(x - y);
+                mse_sum += mask * (x - y) * (x - y);
             }
         }
     }

@@ -1,5 +1,5 @@
 // The training loss's kernel (loss.comp), recorded by src/train/loss_passes.cpp (LossPasses):
-// one workgroup per strip of LOSS_SEGMENT_TILES tiles, one above the other.
+// one workgroup per channel of a strip of LOSS_SEGMENT_TILES tiles, one above the other.
 #ifndef VKSPLAT_TRAIN_LOSS_H
 #define VKSPLAT_TRAIN_LOSS_H
 

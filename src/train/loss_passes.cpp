@@ -13,7 +13,7 @@ namespace {
 constexpr uint32_t kTileWidth = shader::train::LOSS_TILE_WIDTH;
 constexpr uint32_t kTileHeight = shader::train::LOSS_TILE_HEIGHT;
 constexpr uint32_t kSegmentTiles = shader::train::LOSS_SEGMENT_TILES;
-constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks strips in a grid-stride loop
+constexpr uint32_t kMaxGroups = shader::MAX_GROUPS_X;  // the kernel walks its work in a grid-stride loop
 
 // The sums of one workgroup, as the kernel writes them (a vec4).
 struct Partial {
@@ -61,7 +61,7 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs, in
     const uint32_t tiles_x = (inputs.width + kTileWidth - 1) / kTileWidth;
     const uint32_t tiles_y = (inputs.height + kTileHeight - 1) / kTileHeight;
     const uint32_t strips = tiles_x * ((tiles_y + kSegmentTiles - 1) / kSegmentTiles);
-    const uint32_t groups = std::min(strips, kMaxGroups);
+    const uint32_t groups = std::min(3 * strips, kMaxGroups);  // a workgroup per channel of a strip
     d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
     Impl::Readback& readback = d.readbacks.at(size_t(slot));
     d.reserve(readback.partials, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
