@@ -112,4 +112,10 @@ void Buffer::release() {
     address_ = 0;
 }
 
+void reserve(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name) {
+    if (buffer && buffer.size() >= bytes) return;
+    buffer = Buffer();  // before the new one: never both at once
+    buffer = Buffer(context, bytes, kind, name);
+}
+
 }  // namespace vksplat::gpu

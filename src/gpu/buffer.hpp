@@ -48,4 +48,8 @@ private:
     std::string name_;
 };
 
+// Replaces `buffer` by one of at least `bytes` where it is smaller (or empty); the contents are not
+// kept. For scratch that grows with its work and is reused, so that steady work allocates nothing.
+void reserve(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name);
+
 }  // namespace vksplat::gpu

@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <random>
 
 #include <glm/gtc/quaternion.hpp>
 
 #include "gpu/kernel.hpp"
-#include "gpu/transfer.hpp"
 #include "shaders/train/densify_gather.kernel.hpp"
 #include "shaders/train/reset_opacity.kernel.hpp"
 #include "train/parameter_layout.hpp"
@@ -140,21 +140,37 @@ struct DensifyPasses::Impl {
     const gpu::Context& context;
     gpu::Kernel<shader::train::DensifyGatherKernel> gather;
     gpu::Kernel<shader::train::ResetOpacityKernel> reset;
+    // Every call's commands, each submission waited for. Densification runs every 100 steps, and
+    // a command pool, a staging buffer in pinned host memory or a wait per array each cost the
+    // host time a GPU spends on several steps; so the stream and the staging are kept, and grow.
+    gpu::CommandStream stream;
+    gpu::Buffer readback;  // host memory: the inputs plan_densify reads
+    gpu::Buffer upload;    // host memory: the plan's sources and overrides
+    gpu::Buffer plan;      // the same on the device, which the gather reads
 
-    explicit Impl(const gpu::Context& c) : context(c), gather(c), reset(c) {}
+    explicit Impl(const gpu::Context& c) : context(c), gather(c), reset(c), stream(c, 0) {}
 };
 
 DensifyPasses::DensifyPasses(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
 DensifyPasses::~DensifyPasses() = default;
 
-DensifyInputs DensifyPasses::download_inputs(const TrainableScene& scene) const {
+DensifyInputs DensifyPasses::download_inputs(const TrainableScene& scene) {
+    Impl& d = *impl_;
     const uint32_t n = scene.layout.count;
-    return {n, gpu::read_buffer<float>(impl_->context, scene.params, size_t(n) * 11),
-            gpu::read_buffer<float>(impl_->context, scene.densify, size_t(n) * kDensifyStride)};
+    const size_t geometry = size_t(n) * 11, sums = size_t(n) * kDensifyStride;
+    gpu::reserve(d.readback, d.context, (geometry + sums) * sizeof(float), gpu::MemoryKind::readback,
+                 "densification inputs (readback)");
+    d.stream.begin();
+    d.stream.copy(scene.params, d.readback, geometry * sizeof(float));
+    d.stream.copy(scene.densify, d.readback, sums * sizeof(float), 0, geometry * sizeof(float));
+    d.stream.barrier_before_host_read();
+    d.stream.submit_and_wait();
+    const auto* values = static_cast<const float*>(d.readback.mapped());
+    return {n, std::vector<float>(values, values + geometry), std::vector<float>(values + geometry, values + geometry + sums)};
 }
 
-void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) const {
-    const auto& context = impl_->context;
+void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) {
+    Impl& d = *impl_;
     const uint32_t n = scene.layout.count, m = uint32_t(plan.sources.size());
     const ParameterLayout next{m, scene.layout.sh_coefficients};
     // Sums start at zero in the new scene, so the old ones go first; then each array is gathered
@@ -163,44 +179,50 @@ void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) const 
     scene.grads = gpu::Buffer();  // where kept at all: of the old layout
     scene.densify = gpu::Buffer();
     try {
-        // A buffer is never empty, so a plan that keeps nothing, or has no splits, still has one.
-        const auto upload = [&](auto values, const char* name) {
-            if (values.empty()) values.push_back({});
-            return gpu::upload_buffer(context, values, name);
-        };
-        const gpu::Buffer sources = upload(plan.sources, "densify sources");
-        const gpu::Buffer overrides = upload(plan.overrides, "densify overrides");
+        // The plan in one buffer, sources then overrides; never empty, so that a plan that keeps
+        // nothing, or has no splits, still has addresses to pass.
+        const VkDeviceSize source_bytes = plan.sources.size() * sizeof(uint32_t);
+        const VkDeviceSize plan_bytes = std::max<VkDeviceSize>(source_bytes + plan.overrides.size() * sizeof(float), 4);
+        gpu::reserve(d.upload, d.context, plan_bytes, gpu::MemoryKind::upload, "densify plan (staging)");
+        gpu::reserve(d.plan, d.context, plan_bytes, gpu::MemoryKind::device, "densify plan");
+        auto* staged = static_cast<std::byte*>(d.upload.mapped());
+        std::memcpy(staged, plan.sources.data(), source_bytes);
+        std::memcpy(staged + source_bytes, plan.overrides.data(), plan.overrides.size() * sizeof(float));
+        // Each gather is waited for, so that its old array can go before the next is made.
         const auto gather = [&](gpu::Buffer& array, const char* name, uint32_t zero_from, uint32_t override_from) {
-            gpu::Buffer gathered = TrainableScene::allocate_array(context, next, name);
-            gpu::CommandStream stream(context, 0);
-            stream.begin();
-            stream.dispatch(impl_->gather,
-                            {.old_values = array.address(),
-                             .new_values = gathered.address(),
-                             .sources = sources.address(),
-                             .overrides = overrides.address(),
-                             .old_count = n,
-                             .new_count = m,
-                             .zero_from = zero_from,
-                             .override_from = override_from,
-                             .sh_floats = next.sh_coefficients * 3},
-                            gpu::groups_for(std::max(m, 1u)));
-            stream.submit_and_wait();
+            gpu::Buffer gathered = TrainableScene::allocate_array(d.context, next, name);
+            d.stream.dispatch(d.gather,
+                              {.old_values = array.address(),
+                               .new_values = gathered.address(),
+                               .sources = d.plan.address(),
+                               .overrides = d.plan.address() + source_bytes,
+                               .old_count = n,
+                               .new_count = m,
+                               .zero_from = zero_from,
+                               .override_from = override_from,
+                               .sh_floats = next.sh_coefficients * 3},
+                              gpu::groups_for(std::max(m, 1u)));
+            d.stream.submit_and_wait();
             array = std::move(gathered);
         };
+        d.stream.begin();
+        d.stream.copy(d.upload, d.plan, plan_bytes);
+        d.stream.barrier();
         gather(scene.params, "trained parameters", m, plan.override_from);
+        d.stream.begin();
         gather(scene.first_moment, "Adam first moments", plan.fresh_from, m);
+        d.stream.begin();
         gather(scene.second_moment, "Adam second moments", plan.fresh_from, m);
         scene.layout = next;
-        scene.allocate_sums(context);
+        scene.allocate_sums(d.context);
     } catch (...) {
         scene = TrainableScene();  // part old, part new: nothing of it can be used
         throw;
     }
 }
 
-void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) const {
-    gpu::CommandStream stream(impl_->context, 0);
+void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) {
+    gpu::CommandStream& stream = impl_->stream;
     stream.begin();
     stream.dispatch(impl_->reset,
                     {.params = scene.params.address(),
@@ -211,5 +233,7 @@ void DensifyPasses::reset_opacity(TrainableScene& scene, double max_opacity) con
                     gpu::groups_for(scene.layout.count));
     stream.submit_and_wait();
 }
+
+uint64_t DensifyPasses::device_bytes() const { return impl_->plan.size(); }
 
 }  // namespace vksplat::train

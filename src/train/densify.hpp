@@ -52,14 +52,17 @@ public:
     DensifyPasses& operator=(const DensifyPasses&) = delete;
 
     // What plan_densify needs of `scene`, read back.
-    DensifyInputs download_inputs(const TrainableScene& scene) const;
+    DensifyInputs download_inputs(const TrainableScene& scene);
     // Lays `scene` out anew by the plan, from its parameters and moments; its densification sums
     // start at zero, and gradients, if it kept any, are gone. Waits for the device. Holds at most
-    // the old scene's parameters and moments and one new array, or the new scene, at once. If it
+    // the old scene's parameters and moments and one new array, or the new scene, at once (and
+    // the plan's copy on the device, kept for the next call). If it
     // throws (out of device memory), `scene` is left empty: it was part old, part new.
-    void apply(TrainableScene& scene, const DensifyPlan& plan) const;
+    void apply(TrainableScene& scene, const DensifyPlan& plan);
     // opacity = min(opacity, max_opacity) for every Gaussian, those moments zeroed. Waits.
-    void reset_opacity(TrainableScene& scene, double max_opacity) const;
+    void reset_opacity(TrainableScene& scene, double max_opacity);
+    // Device memory kept between calls: the last plan's largest copy.
+    uint64_t device_bytes() const;
 
 private:
     struct Impl;

@@ -38,12 +38,6 @@ struct LossPasses::Impl {
     explicit Impl(const gpu::Context& c)
         : context(c),
           kernel(c) {}
-
-    // Replaces `buffer` by one of at least `bytes` when it is smaller; contents are not kept.
-    void reserve(gpu::Buffer& buffer, VkDeviceSize bytes, gpu::MemoryKind kind, const char* name) {
-        if (buffer && buffer.size() >= bytes) return;
-        buffer = gpu::Buffer(context, bytes, kind, name);
-    }
 };
 
 LossPasses::LossPasses(const gpu::Context& context) : impl_(std::make_unique<Impl>(context)) {}
@@ -62,9 +56,9 @@ void LossPasses::record(gpu::CommandStream& stream, const LossInputs& inputs, in
     const uint32_t tiles_y = (inputs.height + kTileHeight - 1) / kTileHeight;
     const uint32_t strips = tiles_x * ((tiles_y + kSegmentTiles - 1) / kSegmentTiles);
     const uint32_t groups = std::min(3 * strips, kMaxGroups);  // a workgroup per channel of a strip
-    d.reserve(d.partials, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
+    gpu::reserve(d.partials, d.context, groups * sizeof(Partial), gpu::MemoryKind::device, "loss partial sums");
     Impl::Readback& readback = d.readbacks.at(size_t(slot));
-    d.reserve(readback.partials, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
+    gpu::reserve(readback.partials, d.context, groups * sizeof(Partial), gpu::MemoryKind::readback, "loss sums readback");
     readback.groups = groups;
     readback.pixel_channels = 3.0 * double(pixels);
     readback.ssim_weight = inputs.ssim_weight;

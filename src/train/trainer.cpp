@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -36,6 +37,15 @@ uint32_t pack_rgba8(float r, float g, float b, uint8_t alpha) {
 }
 
 double psnr_from_mse(double mse) { return mse > 0 ? -10.0 * std::log10(mse) : std::numeric_limits<double>::infinity(); }
+
+using Clock = std::chrono::steady_clock;
+
+// Adds the seconds since `since` to `total` and restarts `since`.
+void lap(double& total, Clock::time_point& since) {
+    const Clock::time_point now = Clock::now();
+    total += std::chrono::duration<double>(now - since).count();
+    since = now;
+}
 
 }  // namespace
 
@@ -91,6 +101,7 @@ struct Trainer::Impl {
     gpu::Buffer photo, pixel_grad;
     uint32_t pixel_capacity = 0;
     uint64_t iteration = 0, skipped = 0;  // iteration: steps submitted
+    SceneChangeTimes scene_change_times;
     int sh_degree = 3;
     struct PositionDecay {
         uint64_t from = 0;
@@ -211,8 +222,10 @@ void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
     if (in_flight && (in_flight->camera.width != camera.width || in_flight->camera.height != camera.height))
         finish();
     const auto [pixels, tiles] = render::image_extent(camera);
+    Clock::time_point since = Clock::now();
     renderer.ensure(scene.layout.count, pixels, tiles);
     ensure_pixels(pixels);
+    lap(scene_change_times.frame_allocation, since);
     Slot& slot = slots[iteration % 2];
     std::memcpy(slot.photo_upload.mapped(), target.rgba.data(), uint64_t(pixels) * 4);
     slot.camera = camera;
@@ -354,24 +367,41 @@ void Trainer::set_position_decay(uint64_t from_iteration, int steps) { impl_->po
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
+    SceneChangeTimes& times = d.scene_change_times;
+    Clock::time_point since = Clock::now();
     d.finish();
-    const DensifyPlan plan = plan_densify(d.densify.download_inputs(d.scene), rules, d.options.scene_extent, d.iteration);
+    lap(times.wait, since);
+    const DensifyInputs inputs = d.densify.download_inputs(d.scene);
+    lap(times.read_back, since);
+    const DensifyPlan plan = plan_densify(inputs, rules, d.options.scene_extent, d.iteration);
+    lap(times.plan, since);
     d.change_scene(plan);
+    lap(times.relayout, since);
     return plan.report;
 }
 
 RelocationReport Trainer::relocate(const RelocationRules& rules) {
     auto& d = *impl_;
+    SceneChangeTimes& times = d.scene_change_times;
+    Clock::time_point since = Clock::now();
     d.finish();
-    const RelocationPlan relocation = plan_relocation(d.densify.download_inputs(d.scene), rules, d.iteration);
+    lap(times.wait, since);
+    const DensifyInputs inputs = d.densify.download_inputs(d.scene);
+    lap(times.read_back, since);
+    const RelocationPlan relocation = plan_relocation(inputs, rules, d.iteration);
+    lap(times.plan, since);
     if (relocation.report.relocated + relocation.report.added > 0) d.change_scene(relocation.plan);
+    lap(times.relayout, since);
     return relocation.report;
 }
 
 size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     auto& d = *impl_;
     if (keep.size() != d.scene.layout.count) throw std::invalid_argument("Trainer::remove: one flag per Gaussian");
+    SceneChangeTimes& times = d.scene_change_times;
+    Clock::time_point since = Clock::now();
     d.finish();
+    lap(times.wait, since);
     DensifyPlan plan;
     for (uint32_t i = 0; i < keep.size(); ++i)
         if (keep[i]) plan.sources.push_back(i);
@@ -379,12 +409,15 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
     // Only the sums: the geometry densification plans from is not needed here.
     const std::vector<float> before =
         gpu::read_buffer<float>(d.context, d.scene.densify, uint64_t(d.scene.layout.count) * kDensifyStride);
+    lap(times.read_back, since);
     std::vector<float> sums;
     sums.reserve(plan.sources.size() * kDensifyStride);
     for (uint32_t i : plan.sources)
         sums.insert(sums.end(), before.begin() + i * kDensifyStride, before.begin() + (i + 1) * kDensifyStride);
+    lap(times.plan, since);
     d.change_scene(plan);
     if (!sums.empty()) d.scene.restore_densify_sums(d.context, sums);
+    lap(times.relayout, since);
     return keep.size() - plan.sources.size();
 }
 
@@ -396,6 +429,7 @@ void Trainer::reset_opacity(double max_opacity) {
 
 const gpu::Context& Trainer::context() const { return impl_->context; }
 const SanitizeReport& Trainer::sanitize_report() const { return impl_->report; }
+const SceneChangeTimes& Trainer::scene_change_times() const { return impl_->scene_change_times; }
 size_t Trainer::size() const { return impl_->scene.layout.count; }
 GaussianCloud Trainer::cloud() const {
     impl_->finish();
@@ -404,8 +438,8 @@ GaussianCloud Trainer::cloud() const {
 
 uint64_t Trainer::device_bytes() const {
     const auto& d = *impl_;
-    return d.scene.device_bytes() + d.renderer.device_bytes() + d.loss.device_bytes() + d.photo.size() +
-           d.pixel_grad.size();
+    return d.scene.device_bytes() + d.renderer.device_bytes() + d.loss.device_bytes() + d.densify.device_bytes() +
+           d.photo.size() + d.pixel_grad.size();
 }
 
 void Trainer::save_checkpoint(const std::filesystem::path& path, io::WriteMode mode) const {

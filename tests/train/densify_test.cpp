@@ -153,7 +153,7 @@ TEST_F(DensifyPasses, MoveParametersAndMomentsByThePlan) {
     plan.fresh_from = 2;
     plan.override_from = 3;
     plan.overrides = {10, 11, 12, -1, -2, -3, 1.5f, 20, 21, 22, -4, -5, -6, 2.5f};
-    const train::DensifyPasses passes(context());
+    train::DensifyPasses passes(context());
     passes.apply(next, plan);
     ASSERT_EQ(next.layout.count, 5u);
     const GaussianCloud p = next.download(context()), m1 = next.download(context(), next.first_moment),
@@ -199,15 +199,15 @@ TEST_F(DensifyPasses, HoldNoMoreThanTheLargerSceneAndOneArray) {
     train::DensifyPlan plan;
     for (uint32_t i = 0; i < 2 * n; ++i) plan.sources.push_back(i % n);
     plan.fresh_from = plan.override_from = 2 * n;
-    const train::DensifyPasses passes(context());
+    train::DensifyPasses passes(context());
     const uint64_t array_bytes = uint64_t(2 * n) * 59 * sizeof(float);
     context().reset_peak_device_bytes();
     passes.apply(scene, plan);
     ASSERT_EQ(scene.layout.count, 2 * n);
     const uint64_t held = context().held_device_bytes(), peak = context().peak_device_bytes();
     EXPECT_GE(held, 3 * array_bytes);  // parameters and two moments
-    EXPECT_LE(peak, held + array_bytes / 2 + 2 * n * sizeof(uint32_t) + (1u << 16))
-        << "one old array, the sources list and alignment aside";
+    // The plan's device copy stays (the next densification reuses it), so `held` counts it.
+    EXPECT_LE(peak, held + array_bytes / 2 + (1u << 16)) << "one old array and alignment aside";
 }
 
 }  // namespace

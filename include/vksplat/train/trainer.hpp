@@ -157,6 +157,14 @@ struct DensifyReport {
     size_t before = 0, cloned = 0, split = 0, pruned = 0, after = 0;
 };
 
+// Host wall time spent changing the scene (densify, relocate, remove), in seconds summed over the
+// trainer's life: waiting for the step in flight, reading the device's inputs back, planning on the
+// host, laying the scene out anew on the device; and the frame's allocation by the steps after
+// (a scene change frees the renderer's frame to make room; the first step's allocation included).
+struct SceneChangeTimes {
+    double wait = 0, read_back = 0, plan = 0, relayout = 0, frame_allocation = 0;
+};
+
 // 3DGS-MCMC's densification (Kheradmand et al. 2024, sec. 4.2): every Gaussian of opacity at most
 // min_opacity is moved onto a live one, drawn with probability proportional to opacity; then
 // copies of Gaussians drawn the same way are added until the scene holds `target` (none when it
@@ -230,6 +238,7 @@ public:
     void reset_opacity(double max_opacity = 0.01);
 
     const SanitizeReport& sanitize_report() const;
+    const SceneChangeTimes& scene_change_times() const;
     size_t size() const;
     // The current parameters (read back from the device).
     GaussianCloud cloud() const;

@@ -54,6 +54,7 @@ struct LoopResult {
     double seconds = 0;                 // wall time of this run's steps, the strategy's work included
     double snapshot_seconds = 0;        // spent in LoopOptions::snapshot, not in seconds
     double strategy_seconds = 0;        // of which densification and opacity resets
+    SceneChangeTimes scene_changes;     // the trainer's, during this run (in seconds, not only in strategy_seconds)
     double gpu_ms_per_iteration = 0;    // median GPU time of a step (Vulkan timestamps)
     std::vector<StageTiming> stages;    // median GPU time of each pass, in recording order
     // The most device memory vksplat held on the trainer's context while the loop ran
