@@ -28,9 +28,10 @@ struct Geometry {
         const float* s = &in.geometry[layout.log_scales() + 3 * i];
         return {std::exp(s[0]), std::exp(s[1]), std::exp(s[2])};
     }
+    // exp of the largest log-scale: the largest scale (exp is monotonic), for one exp, not three.
     float max_scale(size_t i) const {
-        const glm::vec3 s = scale(i);
-        return std::max({s.x, s.y, s.z});
+        const float* s = &in.geometry[layout.log_scales() + 3 * i];
+        return std::exp(std::max({s[0], s[1], s[2]}));
     }
     float opacity(size_t i) const { return 1.0f / (1.0f + std::exp(-in.geometry[layout.opacities() + i])); }
     glm::vec3 position(size_t i) const {
@@ -89,22 +90,25 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
     for (uint32_t i : candidates) (g.max_scale(i) <= small ? clone : split)[i] = 1;
 
     // Pruned after growing, as the reference prunes (so new Gaussians too): too transparent, or,
-    // once asked, larger than max_world_scale x extent or (with max_screen_radius) too large on
-    // screen; new Gaussians have no radius yet.
-    const auto pruned = [&](size_t i, float largest_scale, bool is_new) {
+    // once asked, larger than max_world_scale x extent (a split sample's scales are the source's
+    // divided by `shrink`) or (with max_screen_radius) too large on screen; new Gaussians have no
+    // radius yet. The scale is computed only where asked: this runs for every Gaussian at every
+    // densification.
+    const auto pruned = [&](size_t i, bool is_new, float shrink) {
         if (g.opacity(i) < rules.min_opacity) return true;
         if (!rules.prune_large) return false;
-        if (largest_scale > float(rules.max_world_scale * scene_extent)) return true;
+        if (g.max_scale(i) / shrink > float(rules.max_world_scale * scene_extent)) return true;
         return !is_new && rules.max_screen_radius > 0 && sum(i, 2) > rules.max_screen_radius;
     };
+    plan.sources.reserve(n);
     for (size_t i = 0; i < n; ++i)
-        if (!split[i] && !pruned(i, g.max_scale(i), false)) plan.sources.push_back(uint32_t(i));
+        if (!split[i] && !pruned(i, false, 1.0f)) plan.sources.push_back(uint32_t(i));
     plan.fresh_from = uint32_t(plan.sources.size());
     const size_t survivors = plan.sources.size();
     size_t new_pruned = 0;
     for (size_t i = 0; i < n; ++i) {
         if (!clone[i]) continue;
-        if (pruned(i, g.max_scale(i), true)) {
+        if (pruned(i, true, 1.0f)) {
             ++new_pruned;
             continue;
         }
@@ -118,12 +122,11 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
         if (!split[i]) continue;
         ++plan.report.split;
         const glm::vec3 scale = g.scale(i);
-        const float shrunk = g.max_scale(i) / kSplitShrink;
         const glm::mat3 rotation = g.rotation(i);
         for (int s = 0; s < kSplitCount; ++s) {
             // Sampled before the prune test, so that a pruned sample does not change the others.
             const glm::vec3 offset = rotation * (scale * glm::vec3(normal(rng), normal(rng), normal(rng)));
-            if (pruned(i, shrunk, true)) {
+            if (pruned(i, true, kSplitShrink)) {
                 ++new_pruned;
                 continue;
             }
