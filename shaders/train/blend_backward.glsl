@@ -71,21 +71,16 @@ const uint BATCH = 256;
 #include "shaders/render/block_hit_lists.glsl"
 
 
-#if FIXED_POINT_SUMS
-// An integer holds no NaN nor infinity, and a conversion out of its range is undefined. A value
-// this invocation added was one of those: the step is marked once, at the end of main()
-// (parameter_layout.h), and nothing steps. The value added is bounded, so that the conversion is
-// defined; marking the step at every add instead (a branch around each atomic) cost the pass 7%
-// on an H200.
-bool sums_overflowed = false;
-#endif
-
 void add_gradient(uint index, float value) {
     if (value == 0.0) return;
 #if FIXED_POINT_SUMS
-    sums_overflowed = sums_overflowed || !(abs(value) < SPLAT_GRAD_FIXED_LIMIT);
-    const float bounded = clamp(isnan(value) ? 0.0 : value, -SPLAT_GRAD_FIXED_LIMIT, SPLAT_GRAD_FIXED_LIMIT);
-    atomicAdd(Int64s(pc.splat_grads).v[index], int64_t(round(bounded * SPLAT_GRAD_FIXED_SCALE)));
+    // An integer holds no NaN nor infinity, and a conversion out of its range is undefined: the
+    // step is marked instead (parameter_layout.h), and nothing steps.
+    if (!(abs(value) < SPLAT_GRAD_FIXED_LIMIT)) {
+        atomicOr(pc.status.v[0], STEP_NONFINITE | STEP_NONFINITE_SUMS);
+        return;
+    }
+    atomicAdd(Int64s(pc.splat_grads).v[index], int64_t(round(value * SPLAT_GRAD_FIXED_SCALE)));
 #elif FLOAT_ATOMICS
     atomicAdd(pc.splat_grads.v[index], value);
 #else
@@ -372,7 +367,4 @@ void main() {
 #endif
         batch_end = batch_start;
     }
-#if FIXED_POINT_SUMS
-    if (sums_overflowed) atomicOr(pc.status.v[0], STEP_NONFINITE | STEP_NONFINITE_SUMS);
-#endif
 }
