@@ -171,6 +171,30 @@ TEST_F(Trainer, ChangingTheSceneHoldsNoMoreThanAStep) {
     EXPECT_LE(context().peak_device_bytes(), std::max(before, context().held_device_bytes()) + (1u << 16));
 }
 
+// Every scene change's host time lands in one of its phases, and only there: the phases a removal
+// runs grow, a step that allocates nothing adds no frame time, and the step after the change,
+// which allocates the frame the change freed, does.
+TEST_F(Trainer, SceneChangeTimesSayWhereTheHostWaited) {
+    const auto cameras = arc_of_views(64, 48);
+    const train::Photo photo{64, 48, std::vector<uint32_t>(64 * 48, 0xff808080u)};
+    train::Trainer trainer(context(), cluster(4, 2000), {});
+    trainer.step(cameras[0], photo);
+    const train::SceneChangeTimes first = trainer.scene_change_times();
+    EXPECT_GT(first.frame_allocation, 0.0) << "the first step allocates its frame";
+    EXPECT_EQ(first.read_back + first.plan + first.relayout, 0.0);
+    trainer.step(cameras[1], photo);
+    EXPECT_EQ(trainer.scene_change_times().frame_allocation, first.frame_allocation) << "nothing to allocate";
+    std::vector<uint8_t> keep(trainer.size(), 1);
+    keep[0] = 0;
+    trainer.remove(keep);
+    const train::SceneChangeTimes removed = trainer.scene_change_times();
+    EXPECT_GT(removed.read_back, 0.0);
+    EXPECT_GT(removed.relayout, 0.0);
+    EXPECT_EQ(removed.frame_allocation, first.frame_allocation);
+    trainer.step(cameras[2], photo);
+    EXPECT_GT(trainer.scene_change_times().frame_allocation, removed.frame_allocation) << "the freed frame again";
+}
+
 // The blend backward's form names its stage; `fastest` tries both in turn on the first steps (the
 // choice by their timings is BlendBackwardChoice's test), a form asked for is kept. The first
 // step's splats cover more tiles than the first tile entries hold: its first try, cut short, is
