@@ -22,7 +22,6 @@
 //     training view masked to the subject region of the whole scene's render, quality = PSNR inside
 //     the test views' regions)
 #include <CLI/CLI.hpp>
-#include <glm/gtc/quaternion.hpp>
 
 #include <chrono>
 #include <cstdio>
@@ -56,32 +55,6 @@ namespace {
 void print_file_bytes(const char* what, const GaussianCloud& cloud) {
     std::printf("%s (%zu Gaussians, SH degree %d): %zu bytes as SPZ, %zu as compressed PLY\n", what, cloud.size(),
                 cloud.sh_degree, prune::scene_file_bytes(cloud, "spz"), prune::scene_file_bytes(cloud, "compressed-ply"));
-}
-
-// `per_view` pseudo views per training view, evenly between it and its nearest training view (by
-// centre), each looking as a slerp of the two: more viewpoints for a re-fit whose targets there
-// are the unpruned scene's renders (LightGaussian's pseudo views, here for the re-fit itself).
-std::vector<Camera> pseudo_views(const std::vector<Camera>& cameras, const std::vector<size_t>& train, int per_view) {
-    std::vector<Camera> pseudo;
-    for (size_t i : train) {
-        size_t nearest = i;
-        double best = INFINITY;
-        for (size_t j : train) {
-            const double d = glm::length(cameras[j].centre() - cameras[i].centre());
-            if (j != i && d < best) best = d, nearest = j;
-        }
-        const glm::dquat from = glm::quat_cast(cameras[i].rotation), to = glm::quat_cast(cameras[nearest].rotation);
-        for (int k = 1; k <= per_view; ++k) {
-            const double t = double(k) / double(per_view + 1);
-            Camera c = cameras[i];
-            c.name = "pseudo/" + std::to_string(i) + "_" + std::to_string(k);
-            c.split = "train";
-            c.rotation = glm::mat3_cast(glm::slerp(from, to, t));
-            c.translation = -(c.rotation * glm::mix(cameras[i].centre(), cameras[nearest].centre(), t));
-            pseudo.push_back(c);
-        }
-    }
-    return pseudo;
 }
 
 }  // namespace
@@ -151,11 +124,6 @@ int main(int argc, char** argv) {
                  "mask the loss and measure inside the subject region (the automatic ball) of the whole scene");
     app.add_flag("--whole-picture-loss", whole_loss, "with --subject: measure inside the region, but let the loss see every pixel");
     app.add_option("--save", save, "write the re-fitted scene here (.ply)");
-    int pseudo_per_view = 0;
-    bool teacher = false;
-    app.add_option("--pseudo-views", pseudo_per_view,
-                   "N pseudo views per training view (with --drop), their targets the unpruned scene's renders");
-    app.add_flag("--teacher", teacher, "the training views' targets are the unpruned scene's renders, not the photos");
     CLI11_PARSE(app, argc, argv);
     // Line by line, so that a run stopped at a time limit leaves what it had printed.
     std::setvbuf(stdout, nullptr, _IOLBF, 0);
@@ -169,7 +137,7 @@ int main(int argc, char** argv) {
             cloud = whole.subset(keep);
         }
         if (sh_degree && *sh_degree < cloud.sh_degree) cloud = cloud.with_sh_degree(*sh_degree);
-        auto cameras = io::read_cameras(cameras_path);
+        const auto cameras = io::read_cameras(cameras_path);
         gpu::Context context(gpu::ContextOptions{device, false, 0});
         jobs::FinetuneOptions options;
         options.seed = seed;
@@ -233,26 +201,7 @@ int main(int argc, char** argv) {
         std::printf("%s: %zu Gaussians on %s, gradients summed %s\n", scene_path.c_str(), cloud.size(),
                     context.info().name.c_str(), options.train.deterministic ? "in fixed point" : "with float atomics");
         print_file_bytes("input file", cloud);
-        // The unpruned scene's renders as targets (--teacher, --pseudo-views): a renderer of its own.
-        std::optional<Renderer> teacher_renderer;
-        if (teacher || pseudo_per_view > 0) {
-            teacher_renderer.emplace(context);
-            teacher_renderer->set_scene(whole);
-            const auto train = jobs::default_train_views(cameras.size(), test);
-            for (Camera& c : pseudo_views(cameras, train, pseudo_per_view)) cameras.push_back(std::move(c));
-            std::vector<size_t> extended = train;
-            for (size_t v = cameras.size() - train.size() * size_t(pseudo_per_view); v < cameras.size(); ++v)
-                extended.push_back(v);
-            options.train_views = extended;
-            options.test_views = test;
-            std::printf("targets: %s, %zu pseudo views\n", teacher ? "the unpruned scene's renders" : "the photos",
-                        cameras.size() - train.size() - test.size());
-        }
-        const jobs::PhotoSource photos = [&](const Camera& c) {
-            if (!teacher_renderer || (!teacher && c.name.rfind("pseudo/", 0) != 0)) return read_npy_photo(photos_dir, c);
-            const RenderOutput out = teacher_renderer->render(c, settings);
-            return io::ImageRGB{out.width, out.height, out.rgb};
-        };
+        const jobs::PhotoSource photos = [&](const Camera& c) { return read_npy_photo(photos_dir, c); };
         const auto report = [](const train::LoopStatus& s) {
             if (s.iteration % 1000 == 0 || s.iteration == s.iterations)
                 std::printf("  iteration %llu: loss %.4f, train PSNR %.2f dB, %.1f s\n",
