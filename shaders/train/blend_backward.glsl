@@ -123,8 +123,8 @@ void add_splat_gradient(uint gaussian, SplatGradient grad) {
 // of its values its bit s selects and sends the other half to its partner lane ^ s, so eight
 // values cost 4 + 2 + 1 shuffles, then one per further level, and eight lanes end with one
 // total each to add (slot = 4 b0 + 2 b1 + b2 of its lane's low bits). The ninth value takes a
-// subgroupAdd. Subgroups have at least 4 lanes (gpu::Context refuses smaller ones); with exactly
-// 4 each lane ends with two totals.
+// subgroupAdd, and lane 8 adds it where there is one. Subgroups have at least 4 lanes
+// (gpu::Context refuses smaller ones); with exactly 4 each lane ends with two totals.
 void add_subgroup_sum(uint gaussian, SplatGradient grad) {
     float v[8] = float[8](grad.mean.x, grad.mean.y, grad.conic.x, grad.conic.y, grad.conic.z, grad.opacity,
                           grad.color.r, grad.color.g);
@@ -148,6 +148,13 @@ void add_subgroup_sum(uint gaussian, SplatGradient grad) {
         v[0] = (upper4 ? v[1] : v[0]) + subgroupShuffleXor(send, 4u);
         slot += upper4 ? 1u : 0u;
         for (uint s = 8u; s < width; s *= 2u) v[0] += subgroupShuffleXor(v[0], s);
+        if (width >= 16u) {
+            // Lane 8 adds the ninth total beside the slots' eight lanes: one add for all nine,
+            // where a lane of its own would add it after them.
+            if (lane < 9u)
+                add_gradient(lane < 8u ? base + slot : base + SPLAT_GRAD_COLOR + 2u, lane < 8u ? v[0] : last_value);
+            return;
+        }
         if (lane < 8u) add_gradient(base + slot, v[0]);
     } else {
         add_gradient(base + slot, v[0]);
