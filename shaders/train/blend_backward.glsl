@@ -162,6 +162,27 @@ void add_subgroup_sum(uint gaussian, SplatGradient grad) {
     }
     if (lane == width - 1u) add_gradient(base + SPLAT_GRAD_COLOR + 2u, last_value);
 }
+
+// Adds the gradient of the one lane that blended the splat. In a subgroup of 16 lanes or more,
+// lane k takes its k-th value (9 shuffles) and the nine are added at once: the blending lane
+// adding them one after another kept the rest idle for 9 serialised adds.
+void add_lane_gradient(bool blended, uint gaussian, SplatGradient grad) {
+    const uint lane = gl_SubgroupInvocationID;
+    if (gl_SubgroupSize < 16u) {
+        if (blended) add_splat_gradient(gaussian, grad);
+        return;
+    }
+    const uint source = subgroupBallotFindLSB(subgroupBallot(blended));
+    const float values[9] = float[9](grad.mean.x, grad.mean.y, grad.conic.x, grad.conic.y, grad.conic.z,
+                                     grad.opacity, grad.color.r, grad.color.g, grad.color.b);
+    float mine = 0.0;
+    for (uint k = 0u; k < 9u; ++k) {
+        const float value = subgroupShuffle(values[k], source);
+        if (lane == k) mine = value;
+    }
+    // The nine values lie at SPLAT_GRAD_MEAN (0) ... SPLAT_GRAD_COLOR + 2 (8) in this order.
+    if (lane < 9u) add_gradient(gaussian * SPLAT_GRAD_STRIDE + lane, mine);
+}
 #endif
 
 // What a pixel's replay reads from the forward pass and the loss.
@@ -366,7 +387,7 @@ void main() {
             const uint blending = subgroupBallotBitCount(subgroupBallot(blended));
             if (blending == 0u) continue;
             if (blending == 1u) {
-                if (blended) add_splat_gradient(batch_gaussian[j], grad);
+                add_lane_gradient(blended, batch_gaussian[j], grad);
                 continue;
             }
             add_subgroup_sum(batch_gaussian[j], grad);
