@@ -451,6 +451,8 @@ expect train-profile 0 "GPU time per step by pass (medians):  preprocess" -- "$v
   -o "$work/trained_profile" --iters 5 --white-background --quiet --profile
 grep -q '"gpu_ms_per_stage"' "$work/trained_profile/metrics.json" && passed=$((passed + 1)) ||
   { failed=$((failed + 1)); echo "FAILED: metrics.json has no per-pass GPU times"; }
+grep -q '"frame_allocation"' "$work/trained_profile/metrics.json" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: metrics.json does not split the scene changes' host time"; }
 # Fixed-point sums, the default where the device has 64-bit atomics (lavapipe has): two runs write the
 # same bytes (with --fast-sums, float sums added in another order make two such runs of 250 steps
 # differ on lavapipe too); finetune and prune --recover likewise, there with the flag given.

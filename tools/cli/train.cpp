@@ -89,6 +89,10 @@ int run_train(const TrainArgs& args) {
         std::printf("GPU time per step by pass (medians):");
         for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
         std::printf("\n");
+        const train::SceneChangeTimes& changes = result.scene_changes;
+        std::printf("host time of scene changes: waiting %.2f s, read back %.2f s, plan %.2f s, re-layout %.2f s; "
+                    "frame allocation %.2f s\n",
+                    changes.wait, changes.read_back, changes.plan, changes.relayout, changes.frame_allocation);
     }
     if (result.budget_events.prune_events > 0)
         std::printf("%s recipe: %zu Gaussians removed by blend weight in %llu prunes (%.1f s scoring)\n",
@@ -162,7 +166,8 @@ void register_train(CLI::App& app, Action& action) {
     add_gradient_sums_flags(*command, args->sums);
     command->add_flag("--quiet", args->quiet, "no progress lines (for logs)");
     command->add_flag("--profile", args->profile,
-                      "print each pass's median GPU time per step (Vulkan timestamps; metrics.json has them always)");
+                      "print each pass's median GPU time per step (Vulkan timestamps) and where densification's host "
+                      "time went (metrics.json has both always)");
     command->add_flag("--force", args->force, "overwrite existing outputs");
     add_gpu_options(*command, args->gpu);
     command->callback([&action, args] { action = [args] { return run_train(*args); }; });
