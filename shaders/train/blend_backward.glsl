@@ -23,7 +23,9 @@
 //
 // Per pixel (PER_SPLAT 0): each invocation replays its own pixel, the subgroup walking its list
 // one splat at a time; the subgroup sums its pixels' gradients for the splat (add_subgroup_sum:
-// 4 + 2 log2(subgroup size) shuffles) and eight invocations add the sums.
+// 4 + 2 log2(subgroup size) shuffles) and nine invocations add the nine sums at once (in
+// subgroups of 16 or more; smaller ones add the ninth after the eight). Where one pixel alone
+// blended the splat, its nine values go to nine invocations the same way (add_lane_gradient).
 //
 // Per splat (PER_SPLAT 1): the subgroup's invocations hold consecutive splats of its list, back to
 // front, and its W pixels' replay state (transmittance, colour behind) lies in shared memory (W:
