@@ -1,7 +1,11 @@
-// A Gaussian's 3D shape from its parameters, one definition for the renderer's preprocess, its
-// backward pass and the trainer's position noise.
+// A Gaussian's shape and opacity from its parameters, one definition for the renderer's
+// preprocess, the trainer's, their backward pass and the trainer's position noise.
 #ifndef VKSPLAT_COMMON_GAUSSIAN_SHAPE_GLSL
 #define VKSPLAT_COMMON_GAUSSIAN_SHAPE_GLSL
+
+// The logistic function: a Gaussian's opacity from its logit, as the reference's
+// opacity_activation (and HostScene::activate on the host) computes it.
+float sigmoid(float x) { return 1.0 / (1.0 + exp(-x)); }
 
 // Rotation matrix of a unit quaternion (w, x, y, z), as the reference's build_rotation makes it.
 mat3 rotation_matrix(vec4 q) {

@@ -35,8 +35,8 @@ void main() {
     if (pc.status.v[0] != 0u) return;
     const uint n = pc.count;
     for (uint i = gl_GlobalInvocationID.x; i < n; i += gl_NumWorkGroups.x * gl_WorkGroupSize.x) {
-        const float opacity = 1.0 / (1.0 + exp(-pc.params.v[opacities_offset(n) + i]));
-        const float gate = 1.0 / (1.0 + exp(-100.0 * ((1.0 - opacity) - 0.995)));
+        const float opacity = sigmoid(pc.params.v[opacities_offset(n) + i]);
+        const float gate = sigmoid(100.0 * ((1.0 - opacity) - 0.995));
         if (gate * pc.scale == 0.0) continue;
         const uint s = log_scales_offset(n) + 3u * i, r = rotations_offset(n) + 4u * i;
         const vec3 scale = exp(vec3(pc.params.v[s], pc.params.v[s + 1u], pc.params.v[s + 2u]));

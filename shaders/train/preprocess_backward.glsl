@@ -6,8 +6,8 @@
 // SPLAT_GRAD_FIXED_SCALE units per 1.0, read here as they are: no pass turns them into floats
 // first, nor holds a float copy). One thread per Gaussian. From the gradients the blend backward
 // gathered for each splat (projected mean, conic, opacity, colour), the gradients of the raw
-// position, log-scales, quaternion and opacity logit, through every step preprocess.comp and
-// train_activate.comp take (sigmoid, exp, quaternion normalisation, rotation and covariance,
+// position, log-scales, quaternion and opacity logit, through every step preprocess_trainable.comp
+// and preprocess.glsl take (sigmoid, exp, quaternion normalisation, rotation and covariance,
 // EWA projection with its clamped Jacobian, the 0.3 px low-pass, the conic's inverse, the SH
 // colour with its clamp at 0 and its view direction). Exact derivatives of that forward: where
 // the Jacobian's lateral position is clamped it no longer moves with the position, so it passes
@@ -124,7 +124,7 @@ void take_geometry(AdamSettings s, uint n, uint i, float g[11]) {
         float gradient = g[k];
         if (k >= 3u && k < 6u) gradient += s.scale_regularization * exp(state[k].param);
         if (k == 10u) {
-            const float opacity = 1.0 / (1.0 + exp(-state[k].param));
+            const float opacity = sigmoid(state[k].param);
             gradient += s.opacity_regularization * opacity * (1.0 - opacity);
         }
         adam_store(s, pc.raw, geometry_at(n, i, k), state[k], gradient, geometry_rate(s, k));
@@ -172,7 +172,7 @@ ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
     const vec4 q_raw = vec4(pc.raw.v[ro], pc.raw.v[ro + 1u], pc.raw.v[ro + 2u], pc.raw.v[ro + 3u]);
     const float q_length = length(q_raw);
     const vec4 q = q_raw / q_length;
-    const float opacity = 1.0 / (1.0 + exp(-pc.raw.v[oo]));
+    const float opacity = sigmoid(pc.raw.v[oo]);
 
     // Colour: SH + 0.5 clamped at 0 passes no gradient where it clamped.
     const vec3 to_gaussian = p - cam.position.xyz;
@@ -197,7 +197,7 @@ ShStep backward(AdamSettings adam, CameraParams cam, uint n, uint i) {
     const mat3 rotation = rotation_matrix(q);
     const mat3 m = rotation * mat3(scale.x, 0.0, 0.0, 0.0, scale.y, 0.0, 0.0, 0.0, scale.z);
     const mat3 sigma = m * transpose(m);
-    // EWA, as preprocess.comp: the lateral positions are clamped before the Jacobian.
+    // EWA, as preprocess.glsl: the lateral positions are clamped before the Jacobian.
     const float ux = view.x / z, uy = view.y / z;
     const float ux_c = clamp(ux, -cam.jacobian_limits.x, cam.jacobian_limits.y);
     const float uy_c = clamp(uy, -cam.jacobian_limits.z, cam.jacobian_limits.w);

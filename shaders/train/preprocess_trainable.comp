@@ -17,7 +17,7 @@ float raw_parameter(uint k) { return Floats(pc.params).v[k]; }
 
 vec4 gaussian_position_opacity(uint i) {
     const uint n = pc.camera.c.gaussian_count, p = positions_offset(n) + 3u * i;
-    const float opacity = 1.0 / (1.0 + exp(-raw_parameter(opacities_offset(n) + i)));
+    const float opacity = sigmoid(raw_parameter(opacities_offset(n) + i));
     return vec4(raw_parameter(p), raw_parameter(p + 1u), raw_parameter(p + 2u), opacity);
 }
 
