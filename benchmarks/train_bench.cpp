@@ -66,6 +66,8 @@ int main(int argc, char** argv) {
     app.add_option("--settle-spacing", recipe.budget.settle_spacing, "steps between settling rounds");
     app.add_option("--restart-decay", recipe.budget.restart_decay,
                    "true: the position rate decays afresh from the settling on (the default)");
+    app.add_flag("--budget-resets", recipe.budget.reset_opacity,
+                 "the budget recipe resets opacities on the reference's schedule (off by default)");
     app.add_flag("--budget-sampling", recipe.budget_sampling,
                  "the budget recipe removes a weighted random sample by blend weight, not the least");
     std::string budget_score = std::string(prune::to_string(recipe.budget_score));

@@ -94,7 +94,7 @@ void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
         rules.max_gaussians = std::max<size_t>(1, growth_target(reference_, budget_, iteration));
         trainer.densify(rules);
     }
-    if (step.reset_opacity) trainer.reset_opacity(reference_.opacity_reset_value);
+    if (step.reset_opacity && budget_.reset_opacity) trainer.reset_opacity(reference_.opacity_reset_value);
     const uint64_t spacing = std::max<uint64_t>(budget_.settle_spacing, 1);
     if (iteration >= budget_.settle_at && (iteration - budget_.settle_at) % spacing == 0) {
         const uint64_t round = (iteration - budget_.settle_at) / spacing;

@@ -2,6 +2,7 @@
 // host, Trainer::remove on lavapipe, and a whole run's counts against the schedule.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <vector>
@@ -93,6 +94,7 @@ protected:
         std::vector<size_t> scored_sizes;
         std::map<uint64_t, size_t> counts;
         std::map<uint64_t, double> rates;
+        std::map<uint64_t, float> max_opacity;
         train::BudgetEvents events;
         size_t final_count = 0;
     };
@@ -129,6 +131,10 @@ protected:
         options.snapshot = [&](const train::Trainer& t, uint64_t iteration) {
             out.counts[iteration] = t.size();
             out.rates[iteration] = t.position_learning_rate();
+            const GaussianCloud cloud = t.cloud();
+            float highest = 0.0f;
+            for (float logit : cloud.opacity_logits) highest = std::max(highest, 1.0f / (1.0f + std::exp(-logit)));
+            out.max_opacity[iteration] = highest;
         };
         train::run_training_loop(trainer, strategy, cameras, views, photos, options);
         out.events = strategy.events();
@@ -176,6 +182,21 @@ TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
     EXPECT_GT(r.counts.at(90), 90u);
     EXPECT_EQ(r.counts.at(100), 90u);
     EXPECT_EQ(r.final_count, 90u);
+}
+
+// The reference's opacity resets happen only when asked for: with them every opacity is at most
+// the reset value right after the reset step; without them the scene keeps its opacities.
+TEST_F(BudgetTraining, ResetsOpacityOnlyWhenAsked) {
+    const train::ReferenceSchedule reference = scaled_schedule(60, 40, 0);
+    auto budget = budget_of(20, 40, 1.0);
+    budget.min_gradient = 0;
+    budget.settle_at = 60;
+    const Run without = run(reference, budget, 50, 40);
+    EXPECT_GT(without.max_opacity.at(40), 0.1f);
+    budget.reset_opacity = true;
+    const Run with = run(reference, budget, 50, 40);
+    EXPECT_LE(with.max_opacity.at(40), float(reference.opacity_reset_value) + 1e-6f);
+    EXPECT_GT(with.max_opacity.at(50), with.max_opacity.at(40));  // and they grow back
 }
 
 // Settling in rounds: each round re-scores and keeps its geometric share; the last reaches the

@@ -2,15 +2,18 @@
 // Training to a Gaussian budget. The reference recipe with a cap (DensifyRules::max_gaussians)
 // fills the budget with the first, crude Gaussians and has no room left for the detail training
 // finds later: bonsai at 80,000 lost 2.6 dB to the 400,000 model, and 9.3 dB at 40,000. This
-// strategy keeps the reference's schedule (SH bands, densification window and interval, opacity
-// resets, clone/split and the transparency and size prunes) and changes how the budget is spent:
+// strategy keeps the reference's schedule (SH bands, densification window and interval,
+// clone/split and the transparency and size prunes) and changes how the budget is spent:
 // - Growth follows a schedule (growth_target) that reaches the budget near the end of the
 //   densification window, as Taming 3DGS's budget mode does (Mallick et al. 2024): each
 //   densification grows the best-ranked candidates (DensifyRanking) up to the schedule's count.
-// - At each opacity reset inside the window, before it, the Gaussians that contribute least to the
+// - With a prune ratio, at each of the reference's opacity-reset steps inside the window (whether
+//   or not it resets), before densifying, the Gaussians that contribute least to the
 //   training views (the caller's importance function, e.g. blend weight Sum alpha T over the
 //   training views) are removed, as Mini-Splatting and Speedy-Splat prune inside training, and
 //   growth refills the budget where the gradients ask for it.
+// - The reference's opacity resets are off unless asked for (BudgetSchedule::reset_opacity): the
+//   settling removes what a reset would have let the transparency prune find.
 // The starting points are the caller's: vksplat::jobs starts from a random subset of them when
 // they would fill most of the budget (BudgetSchedule::start).
 #include <cstddef>
@@ -36,7 +39,7 @@ struct BudgetSchedule {
     // Candidates need at least this mean NDC gradient (the reference's threshold is 0.0002); 0
     // makes every Gaussian drawn since the last densification a candidate.
     double min_gradient = 0.0002;
-    // Fraction of the Gaussians removed at each in-window opacity reset (0: none).
+    // Fraction of the Gaussians removed at each of the reference's in-window opacity-reset steps (0: none).
     double prune_ratio = 0.0;
     // Growth aims at peak x budget; from the step `settle_at` on, the Gaussians beyond the budget,
     // the least important, are removed and the rest train on. A selection from a larger trained
@@ -56,6 +59,14 @@ struct BudgetSchedule {
     // settling keeps can move into the gaps it leaves; false keeps the reference's one decay.
     bool restart_decay = true;
     uint64_t iterations = 30000;   // the run's length (jobs sets it): the restarted decay and the rounds end there
+    // The reference's opacity resets (every opacity_reset_interval steps in the window, and at
+    // densify_from on a white background). In the reference they let the transparency prune find
+    // the Gaussians that stay faint; here the settling removes the least important by blend weight,
+    // and a reset only costs the steps its opacities take to grow back, mid-growth. Without them
+    // (H200, bonsai's 37 test views, one run each; benchmarks/RESULTS.md stop 47): 40,000 28.82 dB
+    // against 28.68, 60,000 29.61 against 29.49, 80,000 30.13 against 29.95, 120,000 30.62
+    // against 30.54, 400,000 31.23 against 31.21.
+    bool reset_opacity = false;
     // The three together (peak 3, 3 rounds, restarted decay) against peak 2 and one settling, H100,
     // means of 3 runs (benchmarks/RESULTS.md): bonsai 80,000 29.99 dB against 29.66, 40,000
     // 28.69 (2 runs) against 28.33; lego 50,000 35.97 against 35.66. Each alone gained 0.05-0.19.
