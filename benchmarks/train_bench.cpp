@@ -68,6 +68,8 @@ int main(int argc, char** argv) {
                    "true: the position rate decays afresh from the settling on (the default)");
     app.add_flag("--budget-resets", recipe.budget.reset_opacity,
                  "the budget recipe resets opacities on the reference's schedule (off by default)");
+    app.add_flag("--budget-prune-large", recipe.budget.prune_large,
+                 "the budget recipe prunes the world-large Gaussians as the reference does (off by default)");
     app.add_flag("--budget-sampling", recipe.budget_sampling,
                  "the budget recipe removes a weighted random sample by blend weight, not the least");
     std::string budget_score = std::string(prune::to_string(recipe.budget_score));

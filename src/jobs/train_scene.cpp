@@ -144,6 +144,7 @@ std::string budget_text(const TrainRecipe& r) {
            std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
            ", settling " + std::to_string(b.settle_rounds) + " x " + std::to_string(b.settle_spacing) +
            (b.restart_decay ? " restarting the decay" : "") + (b.reset_opacity ? ", opacity resets" : "") +
+           (b.prune_large ? ", large pruned" : "") +
            (r.budget_sampling ? ", sampling" : "") +
            ", scored by " + std::string(prune::to_string(r.budget_score)) + ", start " +
            std::to_string(r.start_fraction);

@@ -88,7 +88,7 @@ void BudgetStrategy::after_step(Trainer& trainer, uint64_t iteration) {
         prune_to(trainer, size_t(std::llround(double(trainer.size()) * (1.0 - budget_.prune_ratio))));
     if (step.densify) {
         DensifyRules rules = reference_.densify;
-        rules.prune_large = step.prune_large;
+        rules.prune_large = step.prune_large && budget_.prune_large;
         rules.grad_threshold = budget_.min_gradient;
         rules.ranking = budget_.ranking;
         rules.max_gaussians = std::max<size_t>(1, growth_target(reference_, budget_, iteration));

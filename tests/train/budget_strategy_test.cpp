@@ -95,6 +95,7 @@ protected:
         std::map<uint64_t, size_t> counts;
         std::map<uint64_t, double> rates;
         std::map<uint64_t, float> max_opacity;
+        float final_max_scale = 0;
         train::BudgetEvents events;
         size_t final_count = 0;
     };
@@ -112,12 +113,20 @@ protected:
         return reference;
     }
     // Trains from every third Gaussian of the truth, scoring importance by opacity.
+    // Every third Gaussian of the truth.
+    GaussianCloud every_third() const {
+        std::vector<uint8_t> keep(truth.size(), 0);
+        for (size_t i = 0; i < keep.size(); i += 3) keep[i] = 1;
+        return truth.subset(keep);
+    }
     Run run(const train::ReferenceSchedule& reference, const train::BudgetSchedule& budget, uint64_t iterations,
             uint64_t snapshot_every) {
+        return run(reference, budget, iterations, snapshot_every, every_third());
+    }
+    Run run(const train::ReferenceSchedule& reference, const train::BudgetSchedule& budget, uint64_t iterations,
+            uint64_t snapshot_every, const GaussianCloud& start) {
         Run out;
-        std::vector<uint8_t> every_third(60, 0);
-        for (size_t i = 0; i < 60; i += 3) every_third[i] = 1;
-        train::Trainer trainer(context(), truth.subset(every_third), {});
+        train::Trainer trainer(context(), start, {});
         train::BudgetStrategy strategy(reference, budget, [&](const GaussianCloud& cloud) {
             out.scored_at.push_back(trainer.iteration());
             out.scored_sizes.push_back(cloud.size());
@@ -139,6 +148,7 @@ protected:
         train::run_training_loop(trainer, strategy, cameras, views, photos, options);
         out.events = strategy.events();
         out.final_count = trainer.size();
+        for (float log_scale : trainer.cloud().log_scales) out.final_max_scale = std::max(out.final_max_scale, std::exp(log_scale));
         return out;
     }
 };
@@ -197,6 +207,25 @@ TEST_F(BudgetTraining, ResetsOpacityOnlyWhenAsked) {
     const Run with = run(reference, budget, 50, 40);
     EXPECT_LE(with.max_opacity.at(40), float(reference.opacity_reset_value) + 1e-6f);
     EXPECT_GT(with.max_opacity.at(50), with.max_opacity.at(40));  // and they grow back
+}
+
+// The reference's prune of Gaussians larger than max_world_scale x extent (1 here) happens only
+// when asked for: a budget of the starting count grows nothing, so only prunes change the scene.
+TEST_F(BudgetTraining, KeepsLargeGaussiansUnlessAsked) {
+    const train::ReferenceSchedule reference = scaled_schedule(100, 10, 0);  // the large prune from step 20 on
+    GaussianCloud start = every_third();
+    const float large = float(4 * reference.densify.max_world_scale);
+    for (size_t k = 0; k < 3; ++k) start.log_scales[k] = std::log(large);  // Gaussian 0
+    start.opacity_logits[0] = 3.0f;  // not the transparency prune's
+    auto budget = budget_of(start.size(), start.size(), 1.0);
+    budget.settle_at = 100;
+    const Run kept = run(reference, budget, 40, 10, start);
+    EXPECT_EQ(kept.final_count, start.size());
+    EXPECT_GT(kept.final_max_scale, float(reference.densify.max_world_scale));
+    budget.prune_large = true;
+    const Run pruned = run(reference, budget, 40, 10, start);
+    EXPECT_LT(pruned.final_count, start.size());
+    EXPECT_LE(pruned.final_max_scale, float(reference.densify.max_world_scale));
 }
 
 // Settling in rounds: each round re-scores and keeps its geometric share; the last reaches the

@@ -3,7 +3,7 @@
 // fills the budget with the first, crude Gaussians and has no room left for the detail training
 // finds later: bonsai at 80,000 lost 2.6 dB to the 400,000 model, and 9.3 dB at 40,000. This
 // strategy keeps the reference's schedule (SH bands, densification window and interval,
-// clone/split and the transparency and size prunes) and changes how the budget is spent:
+// clone/split and the transparency prune) and changes how the budget is spent:
 // - Growth follows a schedule (growth_target) that reaches the budget near the end of the
 //   densification window, as Taming 3DGS's budget mode does (Mallick et al. 2024): each
 //   densification grows the best-ranked candidates (DensifyRanking) up to the schedule's count.
@@ -12,8 +12,8 @@
 //   training views (the caller's importance function, e.g. blend weight Sum alpha T over the
 //   training views) are removed, as Mini-Splatting and Speedy-Splat prune inside training, and
 //   growth refills the budget where the gradients ask for it.
-// - The reference's opacity resets are off unless asked for (BudgetSchedule::reset_opacity): the
-//   settling removes what a reset would have let the transparency prune find.
+// - The reference's opacity resets and its prune of world-large Gaussians are off unless asked for
+//   (BudgetSchedule::reset_opacity, prune_large): the settling removes the least important.
 // The starting points are the caller's: vksplat::jobs starts from a random subset of them when
 // they would fill most of the budget (BudgetSchedule::start).
 #include <cstddef>
@@ -60,13 +60,16 @@ struct BudgetSchedule {
     bool restart_decay = true;
     uint64_t iterations = 30000;   // the run's length (jobs sets it): the restarted decay and the rounds end there
     // The reference's opacity resets (every opacity_reset_interval steps in the window, and at
-    // densify_from on a white background). In the reference they let the transparency prune find
-    // the Gaussians that stay faint; here the settling removes the least important by blend weight,
-    // and a reset only costs the steps its opacities take to grow back, mid-growth. Without them
-    // (H200, bonsai's 37 test views, one run each; benchmarks/RESULTS.md stop 47): 40,000 28.82 dB
-    // against 28.68, 60,000 29.61 against 29.49, 80,000 30.13 against 29.95, 120,000 30.62
-    // against 30.54, 400,000 31.23 against 31.21.
+    // densify_from on a white background) and its prune of the Gaussians larger than
+    // DensifyRules::max_world_scale x the scene extent (from the first reset interval on). Under a
+    // budget both are off: the settling removes the least important by blend weight, and a large
+    // Gaussian that the settling keeps covers what many small ones would have to (a room's walls).
+    // Bonsai, H200/H100, one run each (benchmarks/RESULTS.md stop 47), both off against both on:
+    // 40,000 28.82 dB against 28.68, 60,000 29.61 against 29.49, 80,000 30.13 against 29.95,
+    // 120,000 30.62 against 30.54, 400,000 31.23 against 31.21. The resets alone off (the large
+    // prune on) gave 28.63, 29.93 and 31.21 at 40,000, 80,000 and 400,000: the large prune costs.
     bool reset_opacity = false;
+    bool prune_large = false;
     // The three together (peak 3, 3 rounds, restarted decay) against peak 2 and one settling, H100,
     // means of 3 runs (benchmarks/RESULTS.md): bonsai 80,000 29.99 dB against 29.66, 40,000
     // 28.69 (2 runs) against 28.33; lego 50,000 35.97 against 35.66. Each alone gained 0.05-0.19.
