@@ -112,13 +112,13 @@ protected:
         reference.densify.grad_threshold = 0;
         return reference;
     }
-    // Trains from every third Gaussian of the truth, scoring importance by opacity.
     // Every third Gaussian of the truth.
     GaussianCloud every_third() const {
         std::vector<uint8_t> keep(truth.size(), 0);
         for (size_t i = 0; i < keep.size(); i += 3) keep[i] = 1;
         return truth.subset(keep);
     }
+    // Trains from every third Gaussian of the truth (or from `start`), scoring importance by opacity.
     Run run(const train::ReferenceSchedule& reference, const train::BudgetSchedule& budget, uint64_t iterations,
             uint64_t snapshot_every) {
         return run(reference, budget, iterations, snapshot_every, every_third());
