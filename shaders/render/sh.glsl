@@ -77,31 +77,75 @@ vec3 sh_coefficient(ShSource s, uint k) {
     return vec3(s.sh.v[i], s.sh.v[i + 1u], s.sh.v[i + 2u]);
 }
 
+// Basis function k (0 to 15) at the unit direction (x, y, z), up to the sign the sum gives it (1 and
+// 3 are subtracted), over the products xx ... xz of the enclosing scope: one formula for the colour
+// and its backward (sh_basis_function). Bare tokens, not parenthesised, so that the colour's sum
+// expands to the reference's expression as written, operation for operation.
+#define SH_BASIS_0 SH_C0
+#define SH_BASIS_1 SH_C1 * y
+#define SH_BASIS_2 SH_C1 * z
+#define SH_BASIS_3 SH_C1 * x
+#define SH_BASIS_4 SH_C2[0] * xy
+#define SH_BASIS_5 SH_C2[1] * yz
+#define SH_BASIS_6 SH_C2[2] * (2.0 * zz - xx - yy)
+#define SH_BASIS_7 SH_C2[3] * xz
+#define SH_BASIS_8 SH_C2[4] * (xx - yy)
+#define SH_BASIS_9 SH_C3[0] * y * (3.0 * xx - yy)
+#define SH_BASIS_10 SH_C3[1] * xy * z
+#define SH_BASIS_11 SH_C3[2] * y * (4.0 * zz - xx - yy)
+#define SH_BASIS_12 SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy)
+#define SH_BASIS_13 SH_C3[4] * x * (4.0 * zz - xx - yy)
+#define SH_BASIS_14 SH_C3[5] * z * (xx - yy)
+#define SH_BASIS_15 SH_C3[6] * x * (xx - 3.0 * yy)
+
 // The reference's sum over bands, returned from the enclosing function, with COEFF(k) giving
 // coefficient k's rgb: one formula for both ways of reading the values.
 #define SH_RETURN_SUM(COEFF)                                                                            \
     {                                                                                                   \
-        vec3 result = SH_C0 * COEFF(0);                                                                 \
+        vec3 result = SH_BASIS_0 * COEFF(0);                                                            \
         if (degree > 0u) {                                                                              \
             const float x = dir.x, y = dir.y, z = dir.z;                                                \
-            result = result - SH_C1 * y * COEFF(1) + SH_C1 * z * COEFF(2) - SH_C1 * x * COEFF(3);       \
+            result = result - SH_BASIS_1 * COEFF(1) + SH_BASIS_2 * COEFF(2) - SH_BASIS_3 * COEFF(3);    \
             if (degree > 1u) {                                                                          \
                 const float xx = x * x, yy = y * y, zz = z * z;                                         \
                 const float xy = x * y, yz = y * z, xz = x * z;                                         \
-                result = result + SH_C2[0] * xy * COEFF(4) + SH_C2[1] * yz * COEFF(5) +                 \
-                         SH_C2[2] * (2.0 * zz - xx - yy) * COEFF(6) + SH_C2[3] * xz * COEFF(7) +        \
-                         SH_C2[4] * (xx - yy) * COEFF(8);                                               \
+                result = result + SH_BASIS_4 * COEFF(4) + SH_BASIS_5 * COEFF(5) + SH_BASIS_6 * COEFF(6) + \
+                         SH_BASIS_7 * COEFF(7) + SH_BASIS_8 * COEFF(8);                                 \
                 if (degree > 2u) {                                                                      \
-                    result = result + SH_C3[0] * y * (3.0 * xx - yy) * COEFF(9) +                       \
-                             SH_C3[1] * xy * z * COEFF(10) + SH_C3[2] * y * (4.0 * zz - xx - yy) * COEFF(11) + \
-                             SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy) * COEFF(12) +              \
-                             SH_C3[4] * x * (4.0 * zz - xx - yy) * COEFF(13) +                          \
-                             SH_C3[5] * z * (xx - yy) * COEFF(14) + SH_C3[6] * x * (xx - 3.0 * yy) * COEFF(15); \
+                    result = result + SH_BASIS_9 * COEFF(9) + SH_BASIS_10 * COEFF(10) +                 \
+                             SH_BASIS_11 * COEFF(11) + SH_BASIS_12 * COEFF(12) +                        \
+                             SH_BASIS_13 * COEFF(13) + SH_BASIS_14 * COEFF(14) + SH_BASIS_15 * COEFF(15); \
                 }                                                                                       \
             }                                                                                           \
         }                                                                                               \
         return result;                                                                                  \
     }
+
+// Basis function k (0 to 15) at the unit direction `dir`, signed as the colour's sum uses it: the
+// derivative of SH(dir) with respect to coefficient k.
+float sh_basis_function(uint k, vec3 dir) {
+    const float x = dir.x, y = dir.y, z = dir.z;
+    const float xx = x * x, yy = y * y, zz = z * z;
+    const float xy = x * y, yz = y * z, xz = x * z;
+    switch (k) {
+        case 0u: return SH_BASIS_0;
+        case 1u: return -(SH_BASIS_1);
+        case 2u: return SH_BASIS_2;
+        case 3u: return -(SH_BASIS_3);
+        case 4u: return SH_BASIS_4;
+        case 5u: return SH_BASIS_5;
+        case 6u: return SH_BASIS_6;
+        case 7u: return SH_BASIS_7;
+        case 8u: return SH_BASIS_8;
+        case 9u: return SH_BASIS_9;
+        case 10u: return SH_BASIS_10;
+        case 11u: return SH_BASIS_11;
+        case 12u: return SH_BASIS_12;
+        case 13u: return SH_BASIS_13;
+        case 14u: return SH_BASIS_14;
+        default: return SH_BASIS_15;
+    }
+}
 
 // SH(dir) without the 0.5 offset, each coefficient read where it is used. dir: unit vector from
 // the camera centre to the Gaussian. For kernels that must not hold the 48 values at once: the
@@ -127,5 +171,21 @@ vec3 eval_sh(Floats sh, bool half_storage, uint base, uint degree, vec3 dir) {
     return eval_sh_in_place(s, degree, dir);
 }
 #undef SH_RETURN_SUM
+#undef SH_BASIS_0
+#undef SH_BASIS_1
+#undef SH_BASIS_2
+#undef SH_BASIS_3
+#undef SH_BASIS_4
+#undef SH_BASIS_5
+#undef SH_BASIS_6
+#undef SH_BASIS_7
+#undef SH_BASIS_8
+#undef SH_BASIS_9
+#undef SH_BASIS_10
+#undef SH_BASIS_11
+#undef SH_BASIS_12
+#undef SH_BASIS_13
+#undef SH_BASIS_14
+#undef SH_BASIS_15
 
 #endif

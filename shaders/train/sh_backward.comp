@@ -18,30 +18,6 @@ layout(push_constant) uniform Push { ShBackwardPush pc; };
 
 layout(local_size_x = 256) in;
 
-// Real SH basis function k (0 to 15) at unit direction `dir`, as sh.glsl's colour uses it.
-float sh_basis_function(uint k, vec3 dir) {
-    const float x = dir.x, y = dir.y, z = dir.z;
-    const float xx = x * x, yy = y * y, zz = z * z;
-    switch (k) {
-        case 0u: return SH_C0;
-        case 1u: return -SH_C1 * y;
-        case 2u: return SH_C1 * z;
-        case 3u: return -SH_C1 * x;
-        case 4u: return SH_C2[0] * x * y;
-        case 5u: return SH_C2[1] * y * z;
-        case 6u: return SH_C2[2] * (2.0 * zz - xx - yy);
-        case 7u: return SH_C2[3] * x * z;
-        case 8u: return SH_C2[4] * (xx - yy);
-        case 9u: return SH_C3[0] * y * (3.0 * xx - yy);
-        case 10u: return SH_C3[1] * x * y * z;
-        case 11u: return SH_C3[2] * y * (4.0 * zz - xx - yy);
-        case 12u: return SH_C3[3] * z * (2.0 * zz - 3.0 * xx - 3.0 * yy);
-        case 13u: return SH_C3[4] * x * (4.0 * zz - xx - yy);
-        case 14u: return SH_C3[5] * z * (xx - yy);
-        default: return SH_C3[6] * x * (xx - 3.0 * yy);
-    }
-}
-
 void main() {
     const CameraParams cam = pc.camera.c;
     // preprocess_backward.comp stepped nothing in a frame that overflowed, nor behind one, nor
