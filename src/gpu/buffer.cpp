@@ -112,10 +112,14 @@ void Buffer::release() {
     address_ = 0;
 }
 
+void replace(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name) {
+    buffer = Buffer();
+    buffer = Buffer(context, bytes, kind, name);
+}
+
 void reserve(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name) {
     if (buffer && buffer.size() >= bytes) return;
-    buffer = Buffer();  // before the new one: never both at once
-    buffer = Buffer(context, bytes, kind, name);
+    replace(buffer, context, bytes, kind, name);
 }
 
 }  // namespace vksplat::gpu

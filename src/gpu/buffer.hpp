@@ -48,6 +48,10 @@ private:
     std::string name_;
 };
 
+// Frees `buffer`, then makes a new one of `bytes` in its place, so that growing never holds the old
+// and the new at once (a pass's memory stays within what its sizes promise). Contents are not kept.
+void replace(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name);
+
 // Replaces `buffer` by one of at least `bytes` where it is smaller (or empty); the contents are not
 // kept. For scratch that grows with its work and is reused, so that steady work allocates nothing.
 void reserve(Buffer& buffer, const Context& context, VkDeviceSize bytes, MemoryKind kind, const char* name);

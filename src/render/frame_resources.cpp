@@ -8,11 +8,10 @@
 namespace vksplat::render {
 namespace {
 
-// Frees the old buffer before allocating its replacement, so that growing never holds both
-// (device memory stays within what bytes_for() promises for the new sizes).
+// A device buffer of `bytes` in place of `buffer`, the old one freed first (gpu::replace), so that
+// device memory stays within what bytes_for() promises for the new sizes.
 void replace(gpu::Buffer& buffer, const gpu::Context& context, uint64_t bytes, const char* name) {
-    buffer = gpu::Buffer();
-    buffer = gpu::Buffer(context, bytes, gpu::MemoryKind::device, name);
+    gpu::replace(buffer, context, bytes, gpu::MemoryKind::device, name);
 }
 
 void replace_sort_scratch(std::unique_ptr<gpu::RadixSort::Scratch>& scratch, const gpu::Context& context,
@@ -78,8 +77,7 @@ void FrameResources::ensure_image(uint32_t pixels, uint32_t tiles) {
         replace(color_alpha, c, uint64_t(pixels) * 16, "colour and alpha image");
         replace(depth, c, uint64_t(pixels) * 4, "depth image");
         replace(contributors, c, uint64_t(pixels) * 4, "contributor counts");
-        readback = gpu::Buffer();
-        readback = gpu::Buffer(c, readback_bytes(pixels), gpu::MemoryKind::readback, "image readback");
+        gpu::replace(readback, c, readback_bytes(pixels), gpu::MemoryKind::readback, "image readback");
         pixel_capacity = pixels;
     }
     if (tiles > tile_capacity) {

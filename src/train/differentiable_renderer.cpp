@@ -126,18 +126,14 @@ void DifferentiableRenderer::ensure(uint32_t gaussians, uint32_t pixels, uint32_
         frame_.ensure_entries(released_entries_ ? released_entries_
                                                 : std::max(gaussians, 1u) * render::kInitialEntriesPerGaussian);
     if (gaussians > capacity_) {
-        splat_grads_ = gpu::Buffer();
-        splat_grads_ = gpu::Buffer(context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes(),
-                                   gpu::MemoryKind::device, "per-splat gradients");
-        sh_steps_ = gpu::Buffer();
-        sh_steps_ = gpu::Buffer(context_, uint64_t(gaussians) * 32, gpu::MemoryKind::device, "SH backward's inputs");
+        gpu::replace(splat_grads_, context_, uint64_t(gaussians) * kSplatGradStride * splat_grad_bytes(),
+                     gpu::MemoryKind::device, "per-splat gradients");
+        gpu::replace(sh_steps_, context_, uint64_t(gaussians) * 32, gpu::MemoryKind::device, "SH backward's inputs");
         capacity_ = gaussians;
     }
     if (pixels > pixel_capacity_) {
-        transmittance_ = gpu::Buffer();
-        transmittance_ = gpu::Buffer(context_, uint64_t(pixels) * 4, gpu::MemoryKind::device, "final transmittance");
-        last_ = gpu::Buffer();
-        last_ = gpu::Buffer(context_, uint64_t(pixels) * 4, gpu::MemoryKind::device, "last blended positions");
+        gpu::replace(transmittance_, context_, uint64_t(pixels) * 4, gpu::MemoryKind::device, "final transmittance");
+        gpu::replace(last_, context_, uint64_t(pixels) * 4, gpu::MemoryKind::device, "last blended positions");
         pixel_capacity_ = pixels;
     }
 }

@@ -122,14 +122,10 @@ struct Trainer::Impl {
 
     void ensure_pixels(uint32_t pixels) {
         if (pixels <= pixel_capacity) return;
-        for (Slot& slot : slots) {
-            slot.photo_upload = gpu::Buffer();
-            slot.photo_upload = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
-        }
-        photo = gpu::Buffer();
-        photo = gpu::Buffer(context, uint64_t(pixels) * 4, gpu::MemoryKind::device, "photo");
-        pixel_grad = gpu::Buffer();
-        pixel_grad = gpu::Buffer(context, uint64_t(pixels) * 16, gpu::MemoryKind::device, "pixel gradients");
+        for (Slot& slot : slots)
+            gpu::replace(slot.photo_upload, context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
+        gpu::replace(photo, context, uint64_t(pixels) * 4, gpu::MemoryKind::device, "photo");
+        gpu::replace(pixel_grad, context, uint64_t(pixels) * 16, gpu::MemoryKind::device, "pixel gradients");
         pixel_capacity = pixels;
     }
 
