@@ -151,10 +151,7 @@ int main(int argc, char** argv) {
                     static_cast<unsigned long long>(result.iterations), static_cast<unsigned long long>(result.skipped),
                     result.seconds, result.strategy_seconds, result.gaussians, result.gpu_ms_per_iteration,
                     double(result.peak_device_bytes) / 1e6, result.scene_extent);
-        const train::SceneChangeTimes& changes = result.scene_changes;
-        std::printf("scene changes (host wall): waiting %.2f s, read back %.2f s, plan %.2f s, re-layout %.2f s; frame "
-                    "allocation %.2f s\n",
-                    changes.wait, changes.read_back, changes.plan, changes.relayout, changes.frame_allocation);
+        std::printf("scene changes (host wall): %s\n", train::describe(result.scene_changes).c_str());
         std::printf("GPU time per step by pass (medians):");
         for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
         std::printf("\n");

@@ -4,6 +4,7 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <limits>
 
@@ -423,6 +424,19 @@ size_t Trainer::remove(const std::vector<uint8_t>& keep) {
 void Trainer::reset_opacity(double max_opacity) {
     impl_->finish();
     impl_->densify.reset_opacity(impl_->scene, max_opacity);
+}
+
+SceneChangeTimes operator-(const SceneChangeTimes& later, const SceneChangeTimes& earlier) {
+    return {later.wait - earlier.wait, later.read_back - earlier.read_back, later.plan - earlier.plan,
+            later.relayout - earlier.relayout, later.frame_allocation - earlier.frame_allocation};
+}
+
+std::string describe(const SceneChangeTimes& t) {
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  "waiting %.2f s, read back %.2f s, plan %.2f s, re-layout %.2f s; frame allocation %.2f s", t.wait,
+                  t.read_back, t.plan, t.relayout, t.frame_allocation);
+    return text;
 }
 
 const gpu::Context& Trainer::context() const { return impl_->context; }

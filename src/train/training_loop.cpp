@@ -117,10 +117,7 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
     trainer.finish();
     take_results();
     result.peak_device_bytes = trainer.context().peak_device_bytes();
-    const SceneChangeTimes& changes = trainer.scene_change_times();
-    result.scene_changes = {changes.wait - changes_before.wait, changes.read_back - changes_before.read_back,
-                            changes.plan - changes_before.plan, changes.relayout - changes_before.relayout,
-                            changes.frame_allocation - changes_before.frame_allocation};
+    result.scene_changes = trainer.scene_change_times() - changes_before;
     result.seconds = seconds_since(start) - result.snapshot_seconds;
     if (result.interrupted && !options.checkpoint.empty()) trainer.save_checkpoint(options.checkpoint);
     result.iterations = trainer.iteration();

@@ -89,10 +89,7 @@ int run_train(const TrainArgs& args) {
         std::printf("GPU time per step by pass (medians):");
         for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
         std::printf("\n");
-        const train::SceneChangeTimes& changes = result.scene_changes;
-        std::printf("host time of scene changes: waiting %.2f s, read back %.2f s, plan %.2f s, re-layout %.2f s; "
-                    "frame allocation %.2f s\n",
-                    changes.wait, changes.read_back, changes.plan, changes.relayout, changes.frame_allocation);
+        std::printf("host time of scene changes: %s\n", train::describe(result.scene_changes).c_str());
     }
     if (result.budget_events.prune_events > 0)
         std::printf("%s recipe: %zu Gaussians removed by blend weight in %llu prunes (%.1f s scoring)\n",
