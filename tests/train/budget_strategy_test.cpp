@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "vksplat/prune/scores.hpp"
 #include "vksplat/train/budget_strategy.hpp"
 #include "vksplat/train/training_loop.hpp"
 #include "train/photographed_views.hpp"
@@ -140,10 +141,8 @@ protected:
         options.snapshot = [&](const train::Trainer& t, uint64_t iteration) {
             out.counts[iteration] = t.size();
             out.rates[iteration] = t.position_learning_rate();
-            const GaussianCloud cloud = t.cloud();
-            float highest = 0.0f;
-            for (float logit : cloud.opacity_logits) highest = std::max(highest, 1.0f / (1.0f + std::exp(-logit)));
-            out.max_opacity[iteration] = highest;
+            const std::vector<float> opacity = prune::opacities(t.cloud());
+            out.max_opacity[iteration] = *std::max_element(opacity.begin(), opacity.end());
         };
         train::run_training_loop(trainer, strategy, cameras, views, photos, options);
         out.events = strategy.events();
