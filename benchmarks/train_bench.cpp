@@ -62,9 +62,11 @@ int main(int argc, char** argv) {
     app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
     app.add_option("--others-final", recipe.rates.others_final,
                    "the rates but position's decay to this multiple of themselves by the end");
-    app.add_option("--settle-rounds", recipe.budget.settle_rounds, "settle to the budget in this many rounds");
-    app.add_option("--settle-spacing", recipe.budget.settle_spacing, "steps between settling rounds");
-    app.add_option("--restart-decay", recipe.budget.restart_decay,
+    app.add_option("--settle-rounds", recipe.budget.settle.rounds, "settle in this many rounds");
+    app.add_option("--settle-spacing", recipe.budget.settle.spacing, "steps between settling rounds");
+    app.add_option("--keep-share", recipe.keep_share,
+                   "the reference recipe settles to the Gaussians carrying this share of the blend weight");
+    app.add_option("--restart-decay", recipe.budget.settle.restart_decay,
                    "true: the position rate decays afresh from the settling on (the default)");
     app.add_flag("--budget-resets", recipe.budget.reset_opacity,
                  "the budget recipe resets opacities on the reference's schedule (off by default)");

@@ -128,7 +128,9 @@ void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode 
 
 // The budget recipe's settings as a checkpoint records them ("reference" for the reference recipe).
 std::string budget_text(const TrainRecipe& r) {
-    if (chosen_strategy(r) == DensifyStrategy::reference) return "reference";
+    if (chosen_strategy(r) == DensifyStrategy::reference)
+        return r.keep_share > 0 ? "reference, settling to " + std::to_string(r.keep_share) + " of the blend weight"
+                                : "reference";
     if (chosen_strategy(r) == DensifyStrategy::mcmc) {
         const auto& m = r.mcmc;
         return "mcmc: every " + std::to_string(m.refine_every) + " from " + std::to_string(m.refine_from) + " until " +
@@ -142,8 +144,8 @@ std::string budget_text(const TrainRecipe& r) {
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
            std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " until " + std::to_string(b.densify_until) +
-           ", settling " + std::to_string(b.settle_rounds) + " x " + std::to_string(b.settle_spacing) +
-           (b.restart_decay ? " restarting the decay" : "") + (b.reset_opacity ? ", opacity resets" : "") +
+           ", settling " + std::to_string(b.settle.rounds) + " x " + std::to_string(b.settle.spacing) +
+           (b.settle.restart_decay ? " restarting the decay" : "") + (b.reset_opacity ? ", opacity resets" : "") +
            (b.prune_large ? ", large pruned" : "") +
            (r.budget_sampling ? ", sampling" : "") +
            ", scored by " + std::string(prune::to_string(r.budget_score)) + ", start " +
@@ -292,7 +294,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     std::optional<GaussianCloud> subset;  // of the starting points, where the budget asks for fewer
     std::unique_ptr<train::Strategy> strategy;
     train::BudgetStrategy* budget_strategy = nullptr;
+    train::ReferenceStrategy* reference_strategy = nullptr;
     train::McmcStrategy* mcmc_strategy = nullptr;
+    train::SettleSchedule settle = recipe.budget.settle;
+    settle.at = std::min(schedule.densify_until, recipe.iterations);
+    settle.iterations = recipe.iterations;
     const size_t budget_count = schedule.densify.max_gaussians;
     if (strategy_kind != DensifyStrategy::reference) {
         const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget_count) * recipe.start_fraction)));
@@ -303,7 +309,11 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         }
     }
     if (strategy_kind == DensifyStrategy::reference) {
-        strategy = std::make_unique<train::ReferenceStrategy>(schedule);
+        std::optional<train::Settling> settling;
+        if (recipe.keep_share > 0)
+            settling.emplace(settle, train::SettleTarget{.share = recipe.keep_share}, importance_over(context, data, options));
+        strategy = std::make_unique<train::ReferenceStrategy>(schedule, std::move(settling));
+        reference_strategy = static_cast<train::ReferenceStrategy*>(strategy.get());
     } else if (strategy_kind == DensifyStrategy::mcmc) {
         train::McmcSchedule mcmc = recipe.mcmc;
         mcmc.budget = budget_count;
@@ -320,8 +330,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         train::BudgetSchedule budget = recipe.budget;
         budget.budget = budget_count;
         budget.start = subset ? subset->size() : data.initial.size();
-        budget.settle_at = std::min(schedule.densify_until, recipe.iterations);
-        budget.iterations = recipe.iterations;
+        budget.settle = settle;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
@@ -365,6 +374,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                (trainer->blend_backward() == train::BlendBackward::per_splat ? "per splat" : "per pixel") +
                ", the faster of its two forms on this device");
     if (budget_strategy) result.budget_events = budget_strategy->events();
+    if (reference_strategy) result.budget_events = reference_strategy->events();
     if (mcmc_strategy) result.mcmc_events = mcmc_strategy->events();
     result.gaussians = trainer->size();
     if (result.interrupted) return result;

@@ -16,6 +16,7 @@ ScheduledStep scheduled_step(const ReferenceSchedule& s, uint64_t iteration) {
 
 void ReferenceStrategy::before_step(Trainer& trainer, uint64_t iteration) {
     trainer.set_sh_degree(scheduled_step(schedule_, iteration).sh_degree);
+    if (settling_) settling_->before_step(trainer, iteration);
 }
 
 void ReferenceStrategy::after_step(Trainer& trainer, uint64_t iteration) {
@@ -26,6 +27,7 @@ void ReferenceStrategy::after_step(Trainer& trainer, uint64_t iteration) {
         trainer.densify(rules);
     }
     if (step.reset_opacity) trainer.reset_opacity(schedule_.opacity_reset_value);
+    if (settling_) settling_->after_step(trainer, iteration, events_);
 }
 
 }  // namespace vksplat::train

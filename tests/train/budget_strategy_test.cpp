@@ -22,8 +22,8 @@ train::BudgetSchedule budget_of(size_t start, size_t budget, double exponent, do
     b.growth_exponent = exponent;
     b.reach = reach;
     b.peak = 1.0;
-    b.settle_rounds = 1;
-    b.restart_decay = false;
+    b.settle.rounds = 1;
+    b.settle.restart_decay = false;
     return b;
 }
 
@@ -52,26 +52,6 @@ TEST(GrowthTarget, RisesFromTheStartToTheBudgetOverTheWindow) {
     twice.peak = 2.0;
     EXPECT_EQ(train::growth_target(reference, twice, 7750), 11500u);
     EXPECT_EQ(train::growth_target(reference, twice, 15000), 22000u);
-}
-
-TEST(SettleTarget, StepsGeometricallyToTheBudget) {
-    // 160,000 to 80,000 in three rounds: x 2^(-1/3) each time.
-    EXPECT_EQ(train::settle_target(160000, 80000, 3), 126992u);
-    EXPECT_EQ(train::settle_target(126992, 80000, 2), 100794u);
-    EXPECT_EQ(train::settle_target(100794, 80000, 1), 80000u);
-    EXPECT_EQ(train::settle_target(160000, 80000, 1), 80000u);
-    // Within the budget nothing goes.
-    EXPECT_EQ(train::settle_target(70000, 80000, 3), 70000u);
-    EXPECT_EQ(train::settle_target(80000, 80000, 2), 80000u);
-}
-
-TEST(KeepMostImportant, DropsTheLowestWithTiesByIndexAndNaNFirst) {
-    const std::vector<float> importance = {0.5f, 0.1f, NAN, 0.1f, 0.9f, 0.3f};
-    EXPECT_EQ(train::keep_most_important(importance, 3), (std::vector<uint8_t>{1, 0, 0, 0, 1, 1}));
-    EXPECT_EQ(train::keep_most_important(importance, 4), (std::vector<uint8_t>{1, 0, 0, 1, 1, 1}));
-    EXPECT_EQ(train::keep_most_important(importance, 6), (std::vector<uint8_t>(6, 1)));
-    // One is always kept.
-    EXPECT_EQ(train::keep_most_important({0.2f, 0.7f}, 0), (std::vector<uint8_t>{0, 1}));
 }
 
 TEST(BudgetStrategy, RefusesSettingsItCannotFollow) {
@@ -179,7 +159,7 @@ TEST_F(BudgetTraining, CountsFollowTheScheduleAndPrunesHappenAtResets) {
     budget.min_gradient = 0;
     budget.prune_ratio = 0.25;
     budget.peak = 1.5;        // grows to 135, settles back to 90 after step 100
-    budget.settle_at = 100;
+    budget.settle.at = 100;
     const Run r = run(reference, budget, 120, 10);
     EXPECT_EQ(r.scored_at, (std::vector<uint64_t>{40, 80, 100}));  // the resets at 40 and 80, the settling
     EXPECT_EQ(r.events.prune_events, 3u);
@@ -199,7 +179,7 @@ TEST_F(BudgetTraining, ResetsOpacityOnlyWhenAsked) {
     const train::ReferenceSchedule reference = scaled_schedule(60, 40, 0);
     auto budget = budget_of(20, 40, 1.0);
     budget.min_gradient = 0;
-    budget.settle_at = 60;
+    budget.settle.at = 60;
     const Run without = run(reference, budget, 50, 40);
     EXPECT_GT(without.max_opacity.at(40), 0.1f);
     budget.reset_opacity = true;
@@ -217,7 +197,7 @@ TEST_F(BudgetTraining, KeepsLargeGaussiansUnlessAsked) {
     for (size_t k = 0; k < 3; ++k) start.log_scales[k] = std::log(large);  // Gaussian 0
     start.opacity_logits[0] = 3.0f;  // not the transparency prune's
     auto budget = budget_of(start.size(), start.size(), 1.0);
-    budget.settle_at = 100;
+    budget.settle.at = 100;
     const Run kept = run(reference, budget, 40, 10, start);
     EXPECT_EQ(kept.final_count, start.size());
     EXPECT_GT(kept.final_max_scale, float(reference.densify.max_world_scale));
@@ -234,11 +214,11 @@ TEST_F(BudgetTraining, SettlesInRoundsWhenAsked) {
     auto budget = budget_of(20, 40, 1.0);
     budget.min_gradient = 0;
     budget.peak = 2.0;
-    budget.settle_at = 60;
-    budget.settle_rounds = 2;
-    budget.settle_spacing = 15;
-    budget.restart_decay = true;
-    budget.iterations = 100;  // the restarted decay runs over the 40 steps after the settling
+    budget.settle.at = 60;
+    budget.settle.rounds = 2;
+    budget.settle.spacing = 15;
+    budget.settle.restart_decay = true;
+    budget.settle.iterations = 100;  // the restarted decay runs over the 40 steps after the settling
     const Run r = run(reference, budget, 100, 5);
     ASSERT_EQ(r.scored_at, (std::vector<uint64_t>{60, 75}));
     // The position rate decays as usual until the settling, then afresh over 40 steps: half-way

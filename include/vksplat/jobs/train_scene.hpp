@@ -57,6 +57,10 @@ struct TrainRecipe : train::ReferenceSchedule {
     // The score by which the budget recipe's pruning and settling rank the Gaussians, over the
     // training views (prune::score).
     prune::ScoreMethod budget_score = prune::ScoreMethod::blend;
+    // The reference recipe's settling: with keep_share > 0, from the end of its densification window
+    // the Gaussians that carry that share of the blend weight over the training views are kept, in
+    // budget.settle's rounds and with its restarted decay (train::Settling).
+    double keep_share = 0;
     // The MCMC recipe's terms; its budget is densify.max_gaussians too, and it starts from the same
     // subset of the starting points.
     train::McmcSchedule mcmc;
@@ -125,7 +129,7 @@ struct TrainSnapshot {
 struct TrainResult : train::LoopResult {
     size_t gaussians = 0;
     std::string strategy;              // "reference" or "budget"
-    train::BudgetEvents budget_events; // what the budget recipe pruned by importance
+    train::BudgetEvents budget_events; // what the budget recipe or the reference's settling pruned by importance
     train::McmcEvents mcmc_events;     // what the MCMC recipe moved and added
     std::vector<TrainSnapshot> history;
     double evaluate_seconds = 0;       // measuring history's test PSNR

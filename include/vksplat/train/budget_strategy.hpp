@@ -22,6 +22,7 @@
 #include <vector>
 
 #include "vksplat/scene/scene.hpp"
+#include "vksplat/train/settling.hpp"
 #include "vksplat/train/strategy.hpp"
 
 namespace vksplat::train {
@@ -41,24 +42,16 @@ struct BudgetSchedule {
     double min_gradient = 0.0002;
     // Fraction of the Gaussians removed at each of the reference's in-window opacity-reset steps (0: none).
     double prune_ratio = 0.0;
-    // Growth aims at peak x budget; from the step `settle_at` on, the Gaussians beyond the budget,
+    // Growth aims at peak x budget; from the step `settle.at` on, the Gaussians beyond the budget,
     // the least important, are removed and the rest train on. A selection from a larger trained
     // scene keeps more than one grown to the budget (bonsai, means of 3: peak 2 29.35 dB at 80,000
     // and 27.80 at 40,000 where peak 1 gave 28.53 and 26.60 and the cap 28.21 and 21.40, with the
     // old window until 15,000). The price: the peak's memory and time until the settling.
     double peak = 3.0;
-    uint64_t settle_at = 15000;    // jobs sets it to min(densify_until, iterations)
-    // The settling in rounds, settle_spacing steps apart from settle_at on, each re-scoring the
-    // scene and keeping an equal share (geometric) of the way to the budget, as the re-fits of issue
-    // 30 lost less when pruned in three rounds than in one. The strategy shortens the spacing to
-    // fit a short run (every round before `iterations`), or settles at once where none fits.
-    int settle_rounds = 3;
-    uint64_t settle_spacing = 1000;
-    // From settle_at on, the position rate decays afresh from its initial rate to the end of the
-    // run (Trainer::set_position_decay), as a re-fit of a pruned scene does, so that what the
-    // settling keeps can move into the gaps it leaves; false keeps the reference's one decay.
-    bool restart_decay = true;
-    uint64_t iterations = 30000;   // the run's length (jobs sets it): the restarted decay and the rounds end there
+    // The settling from the peak to the budget (settle.at: jobs sets it to min(densify_until,
+    // iterations), and settle.iterations to the run's length). Three rounds 1,000 steps apart,
+    // each re-scoring the scene, and a restarted position decay.
+    SettleSchedule settle;
     // The reference's opacity resets (every opacity_reset_interval steps in the window, and at
     // densify_from on a white background) and its prune of the Gaussians larger than
     // DensifyRules::max_world_scale x the scene extent (from the first reset interval on). Under a
@@ -84,25 +77,6 @@ struct BudgetSchedule {
 // peak x budget once reached (budget below start: the budget throughout).
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration);
 
-// The count a settling round keeps of `count` Gaussians with `rounds_left` rounds to go (this one
-// included): budget x (count / budget)^((rounds_left - 1) / rounds_left), the budget itself in the
-// last round and whenever count is within it.
-size_t settle_target(size_t count, size_t budget, int rounds_left);
-
-// Per Gaussian of a scene, how much it is worth keeping (higher: more).
-using Importance = std::function<std::vector<float>(const GaussianCloud&)>;
-
-// The `count` Gaussians of the highest importance (ties broken by index, so the choice is the same
-// on every platform; NaN ranks lowest; at least one is kept).
-std::vector<uint8_t> keep_most_important(const std::vector<float>& importance, size_t count);
-
-// What BudgetStrategy did, for the log and metrics.
-struct BudgetEvents {
-    size_t pruned = 0;          // removed by importance, in all (the settling included)
-    uint64_t prune_events = 0;
-    double importance_seconds = 0;  // spent scoring
-};
-
 class BudgetStrategy final : public Strategy {
 public:
     // `importance` may be empty when budget.prune_ratio is 0.
@@ -112,11 +86,10 @@ public:
     const BudgetEvents& events() const { return events_; }
 
 private:
-    void prune_to(Trainer& trainer, size_t count);
-
     ReferenceSchedule reference_;
     BudgetSchedule budget_;
     Importance importance_;
+    Settling settling_;
     BudgetEvents events_;
 };
 

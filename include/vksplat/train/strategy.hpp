@@ -5,7 +5,9 @@
 // gsplat's strategies are asked; `train`, `finetune` and `prune --recover` differ in the strategy
 // they give it, not in their loops.
 #include <cstdint>
+#include <optional>
 
+#include "vksplat/train/settling.hpp"
 #include "vksplat/train/trainer.hpp"
 
 namespace vksplat::train {
@@ -52,14 +54,19 @@ struct ScheduledStep {
 };
 ScheduledStep scheduled_step(const ReferenceSchedule& schedule, uint64_t iteration);
 
+// The reference schedule, and where asked for, a settling after its densification window.
 class ReferenceStrategy final : public Strategy {
 public:
-    explicit ReferenceStrategy(const ReferenceSchedule& schedule) : schedule_(schedule) {}
+    explicit ReferenceStrategy(const ReferenceSchedule& schedule, std::optional<Settling> settling = {})
+        : schedule_(schedule), settling_(std::move(settling)) {}
     void before_step(Trainer& trainer, uint64_t iteration) override;
     void after_step(Trainer& trainer, uint64_t iteration) override;
+    const BudgetEvents& events() const { return events_; }
 
 private:
     ReferenceSchedule schedule_;
+    std::optional<Settling> settling_;
+    BudgetEvents events_;
 };
 
 }  // namespace vksplat::train
