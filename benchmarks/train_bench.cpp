@@ -45,7 +45,7 @@ int main(int argc, char** argv) {
     app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
     std::string strategy = "automatic", ranking = "mean";
     uint64_t evaluate_every = 0;
-    app.add_option("--strategy", strategy, "automatic, reference, budget or mcmc");
+    app.add_option("--strategy", strategy, "automatic, reference, lean, budget or mcmc");
     app.add_option("--mcmc-noise", recipe.mcmc.position_noise);
     app.add_option("--mcmc-opacity-reg", recipe.mcmc.opacity_regularization);
     app.add_option("--mcmc-scale-reg", recipe.mcmc.scale_regularization);
@@ -64,8 +64,8 @@ int main(int argc, char** argv) {
                    "the rates but position's decay to this multiple of themselves by the end");
     app.add_option("--settle-rounds", recipe.budget.settle.rounds, "settle in this many rounds");
     app.add_option("--settle-spacing", recipe.budget.settle.spacing, "steps between settling rounds");
-    app.add_option("--keep-share", recipe.keep_share,
-                   "the reference recipe settles to the Gaussians carrying this share of the blend weight");
+    app.add_option("--keep-share", recipe.lean.keep_share,
+                   "the lean recipe settles to the Gaussians carrying this share of the blend weight");
     app.add_option("--restart-decay", recipe.budget.settle.restart_decay,
                    "true: the position rate decays afresh from the settling on (the default)");
     app.add_flag("--budget-resets", recipe.budget.reset_opacity,
@@ -93,7 +93,7 @@ int main(int argc, char** argv) {
     CLI11_PARSE(app, argc, argv);
     try {
         recipe.densify.max_gaussians = max_gaussians;
-        if (densify_until) recipe.densify_until = recipe.budget.densify_until = *densify_until;
+        if (densify_until) recipe.densify_until = recipe.budget.densify_until = recipe.lean.densify_until = *densify_until;
         recipe.strategy = jobs::parse_densify_strategy(strategy);
         recipe.budget_score = prune::parse_score_method(budget_score);
         if (ranking != "mean" && ranking != "sum") throw InputError("--ranking " + ranking, "choose mean or sum");

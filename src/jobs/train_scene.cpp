@@ -73,7 +73,7 @@ io::SfmPoints points_around_cameras(const std::vector<Camera>& cameras, size_t c
 
 DensifyStrategy chosen_strategy(const TrainRecipe& recipe) {
     if (recipe.strategy != DensifyStrategy::automatic) return recipe.strategy;
-    return recipe.densify.max_gaussians > 0 ? DensifyStrategy::budget : DensifyStrategy::reference;
+    return recipe.densify.max_gaussians > 0 ? DensifyStrategy::budget : DensifyStrategy::lean;
 }
 
 // A seeded random `count` of the cloud's Gaussians, in their order.
@@ -126,11 +126,13 @@ void write_json(const fs::path& path, const nlohmann::json& json, io::WriteMode 
     io::write_file_atomically(path, mode, [&](std::ostream& out) { out << json.dump(2) << '\n'; });
 }
 
-// The budget recipe's settings as a checkpoint records them ("reference" for the reference recipe).
-std::string budget_text(const TrainRecipe& r) {
-    if (chosen_strategy(r) == DensifyStrategy::reference)
-        return r.keep_share > 0 ? "reference, settling to " + std::to_string(r.keep_share) + " of the blend weight"
-                                : "reference";
+// The recipe's settings as a checkpoint records them ("reference" for the reference recipe).
+std::string recipe_text(const TrainRecipe& r) {
+    if (chosen_strategy(r) == DensifyStrategy::reference) return "reference";
+    if (chosen_strategy(r) == DensifyStrategy::lean)
+        return "lean: until " + std::to_string(r.lean.densify_until) + ", keeping " + std::to_string(r.lean.keep_share) +
+               " of the blend weight in " + std::to_string(r.budget.settle.rounds) + " x " +
+               std::to_string(r.budget.settle.spacing) + (r.budget.settle.restart_decay ? " restarting the decay" : "");
     if (chosen_strategy(r) == DensifyStrategy::mcmc) {
         const auto& m = r.mcmc;
         return "mcmc: every " + std::to_string(m.refine_every) + " from " + std::to_string(m.refine_from) + " until " +
@@ -164,7 +166,7 @@ train::CheckpointOwner training_owner(const TrainingData& data, const TrainOptio
              {"seed", std::to_string(options.seed)},
              {"densification", "until " + std::to_string(r.densify_until) + ", threshold " +
                                    std::to_string(r.densify.grad_threshold) + ", at most " +
-                                   std::to_string(r.densify.max_gaussians) + ", " + budget_text(r)},
+                                   std::to_string(r.densify.max_gaussians) + ", " + recipe_text(r)},
              {"SH degree", std::to_string(r.sh_degree)}}};
 }
 
@@ -174,6 +176,7 @@ std::string_view to_string(DensifyStrategy strategy) {
     switch (strategy) {
         case DensifyStrategy::automatic: return "automatic";
         case DensifyStrategy::reference: return "reference";
+        case DensifyStrategy::lean: return "lean";
         case DensifyStrategy::budget: return "budget";
         case DensifyStrategy::mcmc: return "mcmc";
     }
@@ -181,9 +184,10 @@ std::string_view to_string(DensifyStrategy strategy) {
 }
 
 DensifyStrategy parse_densify_strategy(std::string_view name) {
-    for (auto s : {DensifyStrategy::automatic, DensifyStrategy::reference, DensifyStrategy::budget, DensifyStrategy::mcmc})
+    for (auto s : {DensifyStrategy::automatic, DensifyStrategy::reference, DensifyStrategy::lean, DensifyStrategy::budget,
+                   DensifyStrategy::mcmc})
         if (name == to_string(s)) return s;
-    throw InputError("--strategy " + std::string(name), "unknown; choose automatic, reference, budget or mcmc");
+    throw InputError("--strategy " + std::string(name), "unknown; choose automatic, reference, lean, budget or mcmc");
 }
 
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels) {
@@ -239,7 +243,10 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                         const std::function<void(const train::LoopStatus&)>& progress) {
     const TrainRecipe& recipe = options.recipe;
     const DensifyStrategy strategy_kind = chosen_strategy(recipe);
-    if (strategy_kind != DensifyStrategy::reference && recipe.densify.max_gaussians == 0)
+    if (strategy_kind == DensifyStrategy::lean && !(recipe.lean.keep_share > 0 && recipe.lean.keep_share <= 1))
+        throw InputError("--keep-share " + std::to_string(recipe.lean.keep_share), "must lie in (0, 1]");
+    if ((strategy_kind == DensifyStrategy::budget || strategy_kind == DensifyStrategy::mcmc) &&
+        recipe.densify.max_gaussians == 0)
         throw InputError("--strategy " + std::string(to_string(strategy_kind)),
                          "needs --max-gaussians: the budget it trains to");
     TrainResult result;
@@ -285,6 +292,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                                             " training starts from; raise it or lower --resolution-scale");
     train::ReferenceSchedule schedule = recipe;
     if (strategy_kind == DensifyStrategy::budget) schedule.densify_until = recipe.budget.densify_until;
+    if (strategy_kind == DensifyStrategy::lean) schedule.densify_until = recipe.lean.densify_until;
     if (recipe.densify.max_gaussians > room)
         notice("--max-gaussians " + std::to_string(recipe.densify.max_gaussians) + ": the memory budget holds about " +
                std::to_string(room) + " Gaussians at this resolution; training to " + std::to_string(room));
@@ -300,7 +308,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
     settle.at = std::min(schedule.densify_until, recipe.iterations);
     settle.iterations = recipe.iterations;
     const size_t budget_count = schedule.densify.max_gaussians;
-    if (strategy_kind != DensifyStrategy::reference) {
+    if (strategy_kind == DensifyStrategy::budget || strategy_kind == DensifyStrategy::mcmc) {
         const size_t most = std::max<size_t>(1, size_t(std::llround(double(budget_count) * recipe.start_fraction)));
         if (data.initial.size() > most) {
             subset = random_subset(data.initial, most, options.seed);
@@ -308,10 +316,14 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                    " of the " + std::to_string(data.initial.size()) + " starting points, so that growth has room");
         }
     }
-    if (strategy_kind == DensifyStrategy::reference) {
+    if (strategy_kind == DensifyStrategy::reference || strategy_kind == DensifyStrategy::lean) {
+        // A run that ends within the lean window densifies throughout, as the reference does:
+        // settling at its last step would leave nothing to re-fit what it keeps. Without a window
+        // (--densify-until 0) nothing grew that settling should take back.
         std::optional<train::Settling> settling;
-        if (recipe.keep_share > 0)
-            settling.emplace(settle, train::SettleTarget{.share = recipe.keep_share}, importance_over(context, data, options));
+        if (strategy_kind == DensifyStrategy::lean && settle.at > 0 && settle.at < recipe.iterations)
+            settling.emplace(settle, train::SettleTarget{.share = recipe.lean.keep_share},
+                             importance_over(context, data, options));
         strategy = std::make_unique<train::ReferenceStrategy>(schedule, std::move(settling));
         reference_strategy = static_cast<train::ReferenceStrategy*>(strategy.get());
     } else if (strategy_kind == DensifyStrategy::mcmc) {

@@ -433,6 +433,12 @@ expect train 0 "test views (3): PSNR" -- "$vksplat" train "$work/train_data" -o 
 [ -f "$work/trained/point_cloud.ply" ] && [ -f "$work/trained/metrics.json" ] && [ -f "$work/trained/cameras.json" ] &&
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: train outputs missing"; }
 expect train-refuses-overwrite 2 "already exists" -- "$vksplat" train "$work/train_data" -o "$work/trained" --iters 20
+# Without a budget the lean recipe runs (its window outlasts these 20 iterations, so nothing
+# settles); its share must be one.
+grep -q '"strategy": "lean"' "$work/trained/metrics.json" && passed=$((passed + 1)) ||
+  { failed=$((failed + 1)); echo "FAILED: a run without a budget did not name the lean recipe"; }
+expect train-keep-share-zero any-failure "--keep-share: '0' is not a finite number in" -- "$vksplat" train "$work/train_data" \
+  -o "$work/trained_share" --iters 5 --keep-share 0
 # Training to a budget: 0 is no budget, the budget recipe needs one, a budget below the starting
 # points starts from a subset of them (said), one beyond memory is lowered (said).
 expect train-budget-zero any-failure "--max-gaussians: '0' is not a whole number >= 1" -- "$vksplat" train "$work/train_data" \

@@ -103,7 +103,8 @@ protected:
         r.sh_degree = 1;
         r.sh_degree_interval = 200;
         r.densify_from = 100;
-        r.densify_until = r.budget.densify_until = densify_until;
+        r.strategy = jobs::DensifyStrategy::reference;
+        r.densify_until = r.budget.densify_until = r.lean.densify_until = densify_until;
         r.densify_interval = 100;
         r.opacity_reset_interval = 100000;
         return r;
@@ -207,6 +208,25 @@ TEST_F(TrainScene, ABudgetLosesLessThanTheCapAtHalfTheCount) {
     ASSERT_FALSE(budget.history.empty());
     EXPECT_EQ(budget.history.back().iteration, 800u);
     EXPECT_EQ(budget.history.back().gaussians, budget.gaussians);
+}
+
+// The lean recipe (what `train` runs without a budget): the reference's growth until 600, then
+// settled in three rounds to the Gaussians that carry 99% of the blend weight: fewer Gaussians than
+// the reference keeps, at nearly its quality on the held-out views.
+TEST_F(TrainScene, TheLeanRecipeKeepsWhatCarriesThePicture) {
+    make_data("train_scene_lean");
+    const jobs::TrainingData data = jobs::load_training_data(dir / "data", recipe(800, 600), 1.0, 0);
+    const jobs::TrainResult reference = train(data, recipe(800, 600), "reference");
+    jobs::TrainRecipe r = recipe(800, 600);
+    r.strategy = jobs::DensifyStrategy::automatic;
+    const jobs::TrainResult lean = train(data, r, "lean");
+    EXPECT_EQ(lean.strategy, "lean");
+    EXPECT_EQ(lean.budget_events.prune_events, 3u);
+    EXPECT_LT(lean.gaussians, reference.gaussians);
+    EXPECT_GT(lean.test.mean_psnr, reference.test.mean_psnr - 0.5);
+    // Its share must be a share.
+    r.lean.keep_share = 0;
+    EXPECT_THROW(train(data, r, "lean_none"), InputError);
 }
 
 // 3DGS-MCMC through the job, its refinements as often as a short run allows: from a random half of

@@ -1,4 +1,4 @@
-// vksplat train: trains a scene from photos with the reference 3DGS recipe on the GPU.
+// vksplat train: trains a scene from photos with the 3DGS recipe on the GPU (jobs::train_scene).
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -22,6 +22,7 @@ struct TrainArgs {
     size_t max_gaussians = 0;
     std::string strategy = "automatic";
     double budget_peak = train::BudgetSchedule{}.peak;
+    double keep_share = jobs::LeanRecipe{}.keep_share;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
     bool white_background = false, resume = false, force = false, quiet = false, profile = false;
@@ -35,9 +36,12 @@ int run_train(const TrainArgs& args) {
     options.recipe.densify.max_gaussians = args.max_gaussians;
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
     options.recipe.budget.peak = args.budget_peak;
+    options.recipe.lean.keep_share = args.keep_share;
     options.evaluate_every = args.evaluate_every;
     // One option for the window of whichever recipe runs; each has its own default.
-    if (args.densify_until) options.recipe.densify_until = options.recipe.budget.densify_until = *args.densify_until;
+    if (args.densify_until)
+        options.recipe.densify_until = options.recipe.budget.densify_until = options.recipe.lean.densify_until =
+            *args.densify_until;
     options.recipe.densify.grad_threshold = args.grad_threshold;
     options.background = args.white_background ? std::array<float, 3>{1, 1, 1} : std::array<float, 3>{0, 0, 0};
     options.seed = args.seed;
@@ -112,7 +116,7 @@ int run_train(const TrainArgs& args) {
 }  // namespace
 
 void register_train(CLI::App& app, Action& action) {
-    auto* command = app.add_subcommand("train", "train a scene from photos (the reference 3DGS recipe, on the GPU)");
+    auto* command = app.add_subcommand("train", "train a scene from photos (the 3DGS recipe, on the GPU)");
     command->footer(
         "DATA: a COLMAP folder (sparse/0 with points3D.bin/.txt/.ply, images/), a NeRF-synthetic folder\n"
         "(transforms_train.json, transforms_test.json) or an INRIA cameras.json beside images/.\n"
@@ -129,11 +133,18 @@ void register_train(CLI::App& app, Action& action) {
                         "when they would fill more than half of it)")
         ->check(count_in(1));
     command->add_option("--strategy", args->strategy,
-                        "how Gaussians grow: budget (needs --max-gaussians), mcmc (3DGS-MCMC's relocation to "
-                        "--max-gaussians), reference (the 3DGS recipe; --max-gaussians then only caps it) or "
-                        "automatic (budget when --max-gaussians is given)")
+                        "how Gaussians grow: lean (the 3DGS recipe's growth until --densify-until, then only the "
+                        "Gaussians that carry --keep-share of the blend weight train on), budget (needs "
+                        "--max-gaussians), mcmc (3DGS-MCMC's relocation to --max-gaussians), reference (the 3DGS "
+                        "recipe; --max-gaussians then only caps it) or automatic (budget when --max-gaussians is "
+                        "given, else lean)")
         ->capture_default_str()
-        ->check(CLI::IsMember({"automatic", "reference", "budget", "mcmc"}));
+        ->check(CLI::IsMember({"automatic", "reference", "lean", "budget", "mcmc"}));
+    command->add_option("--keep-share", args->keep_share,
+                        "lean recipe: keep the fewest Gaussians that carry this share of the blend weight over the "
+                        "training views (1: all that carry any)")
+        ->capture_default_str()
+        ->check(number_in(1e-6, 1.0));
     command->add_option("--budget-peak", args->budget_peak,
                         "budget recipe: grow to this multiple of --max-gaussians, then keep the budget's most "
                         "important (1: grow to the budget only, better where a scene over-fits)")
@@ -145,8 +156,8 @@ void register_train(CLI::App& app, Action& action) {
     command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
         ->check(number_in(0.01, 1.0));
     command->add_option("--densify-until", args->densify_until,
-                        "last iteration that clones, splits and prunes (0: never densify; default 15000, "
-                        "and 5000 for the budget recipe)")
+                        "last iteration that clones, splits and prunes (0: never densify; default 15000 for the "
+                        "reference recipe, 5000 for the lean and budget recipes)")
         ->check(count_in(0));
     command->add_option("--densify-grad-threshold", args->grad_threshold,
                         "mean NDC gradient of a Gaussian's projected mean above which it is cloned or split")

@@ -1,6 +1,6 @@
 #pragma once
-// Trains a scene from photos: the reference 3DGS recipe (Kerbl et al. 2023, train.py) on the GPU.
-// What `vksplat train` does.
+// Trains a scene from photos on the GPU: the reference 3DGS recipe (Kerbl et al. 2023, train.py),
+// by default in its lean form (LeanRecipe) or to a budget (DensifyStrategy). What `vksplat train` does.
 //
 // Data: a COLMAP folder (sparse/0 with points3D.bin, .txt or .ply; photos in images/; PINHOLE or
 // SIMPLE_PINHOLE cameras, other models refused: undistort first), a NeRF-synthetic folder
@@ -8,9 +8,9 @@
 // 100,000 random points in [-1.3, 1.3]^3 to start from), or an INRIA cameras.json beside images/
 // (held out by each entry's "split" where every entry has one, else the first 13; started from
 // random points in the box the cameras see around their common focus).
-// The recipe, each constant in TrainRecipe: SH degree raised every 1,000 iterations; densification
-// every 100 iterations from 500 to 15,000 (train::DensifyRules); opacity reset every 3,000 (and at
-// 500 with a white background); the position rate decaying over the whole run.
+// The reference recipe, each constant in TrainRecipe: SH degree raised every 1,000 iterations;
+// densification every 100 iterations from 500 to 15,000 (train::DensifyRules); opacity reset every
+// 3,000 (and at 500 with a white background); the position rate decaying over the whole run.
 #include <array>
 #include <atomic>
 #include <cstdint>
@@ -35,14 +35,30 @@
 
 namespace vksplat::jobs {
 
-// How the Gaussians grow: the reference recipe (train::ReferenceStrategy), or training to a budget
-// by scheduled growth and pruning (train::BudgetStrategy) or by 3DGS-MCMC's relocation
-// (train::McmcStrategy). automatic: the budget recipe when densify.max_gaussians is set, else the
-// reference.
-enum class DensifyStrategy { automatic, reference, budget, mcmc };
-// "automatic", "reference", "budget", "mcmc"; parse_densify_strategy throws InputError listing them.
+// How the Gaussians grow: the reference recipe (train::ReferenceStrategy), the lean recipe (the
+// reference's growth in a shorter window, then settled to what carries the picture: LeanRecipe),
+// or training to a budget by scheduled growth and pruning (train::BudgetStrategy) or by 3DGS-MCMC's
+// relocation (train::McmcStrategy). automatic: the budget recipe when densify.max_gaussians is set,
+// else the lean recipe.
+enum class DensifyStrategy { automatic, reference, lean, budget, mcmc };
+// "automatic", "reference", "lean", "budget", "mcmc"; parse_densify_strategy throws InputError listing them.
 std::string_view to_string(DensifyStrategy strategy);
 DensifyStrategy parse_densify_strategy(std::string_view name);
+
+// The lean recipe: the reference recipe (clone, split, its prunes and opacity resets) with its
+// densification window ending at densify_until, then settling (train::Settling, in budget.settle's
+// rounds with its restarted position decay) to the fewest Gaussians that carry keep_share of the blend
+// weight (Sum alpha T) over the training views. A scene whose densification over-fits has a long tail
+// of Gaussians that carry little and keeps few; one that needs its Gaussians keeps most. H200, one run
+// each, test views against the photos (benchmarks/RESULTS.md, stop 48), against the reference:
+// snowmiku 28.64 dB with 125,889 Gaussians against 28.21 with 446,866; bonsai (no budget) 31.30 with
+// 565,965 against 31.16 with 1,050,879; lego 37.23 with 121,570 against 37.45 with 292,160. Settling
+// the reference's window of 15,000 instead gained less where the scene over-fits (snowmiku 28.31) and
+// settling to 0.9 or 0.97 lost more on lego (36.12, 36.99).
+struct LeanRecipe {
+    uint64_t densify_until = 5000;
+    double keep_share = 0.99;
+};
 
 // The reference schedule (train::ReferenceSchedule: SH degree, densification, opacity resets) and
 // the run's length and data choices.
@@ -57,10 +73,8 @@ struct TrainRecipe : train::ReferenceSchedule {
     // The score by which the budget recipe's pruning and settling rank the Gaussians, over the
     // training views (prune::score).
     prune::ScoreMethod budget_score = prune::ScoreMethod::blend;
-    // The reference recipe's settling: with keep_share > 0, from the end of its densification window
-    // the Gaussians that carry that share of the blend weight over the training views are kept, in
-    // budget.settle's rounds and with its restarted decay (train::Settling).
-    double keep_share = 0;
+    // The lean recipe's window and what its settling keeps (LeanRecipe).
+    LeanRecipe lean;
     // The MCMC recipe's terms; its budget is densify.max_gaussians too, and it starts from the same
     // subset of the starting points.
     train::McmcSchedule mcmc;
