@@ -180,6 +180,22 @@ struct Trainer::Impl {
         renderer.release_frame();
         densify.apply(scene, plan);
     }
+    // Densification and relocation alike: waits for the step in flight, reads back what the host
+    // plans from, plans (`planner`), and lays the scene out by the plan (`scene_plan` of what was
+    // planned; null where it changes nothing), each phase timed into scene_change_times.
+    template <class Planner, class ScenePlan>
+    auto plan_and_change(Planner&& planner, ScenePlan&& scene_plan) {
+        Clock::time_point since = Clock::now();
+        finish();
+        lap(scene_change_times.wait, since);
+        const DensifyInputs inputs = densify.download_inputs(scene);
+        lap(scene_change_times.read_back, since);
+        auto planned = planner(inputs);
+        lap(scene_change_times.plan, since);
+        if (const DensifyPlan* plan = scene_plan(planned)) change_scene(*plan);
+        lap(scene_change_times.relayout, since);
+        return planned;
+    }
     // Densification that ran out of device memory leaves no scene (DensifyPasses::apply).
     void check_scene() const {
         if (!scene.params)
@@ -366,32 +382,19 @@ void Trainer::set_position_decay(uint64_t from_iteration, int steps) { impl_->po
 
 DensifyReport Trainer::densify(const DensifyRules& rules) {
     auto& d = *impl_;
-    SceneChangeTimes& times = d.scene_change_times;
-    Clock::time_point since = Clock::now();
-    d.finish();
-    lap(times.wait, since);
-    const DensifyInputs inputs = d.densify.download_inputs(d.scene);
-    lap(times.read_back, since);
-    const DensifyPlan plan = plan_densify(inputs, rules, d.options.scene_extent, d.iteration);
-    lap(times.plan, since);
-    d.change_scene(plan);
-    lap(times.relayout, since);
-    return plan.report;
+    const auto plan = [&](const DensifyInputs& inputs) {
+        return plan_densify(inputs, rules, d.options.scene_extent, d.iteration);
+    };
+    return d.plan_and_change(plan, [](const DensifyPlan& planned) { return &planned; }).report;
 }
 
 RelocationReport Trainer::relocate(const RelocationRules& rules) {
     auto& d = *impl_;
-    SceneChangeTimes& times = d.scene_change_times;
-    Clock::time_point since = Clock::now();
-    d.finish();
-    lap(times.wait, since);
-    const DensifyInputs inputs = d.densify.download_inputs(d.scene);
-    lap(times.read_back, since);
-    const RelocationPlan relocation = plan_relocation(inputs, rules, d.iteration);
-    lap(times.plan, since);
-    if (relocation.report.relocated + relocation.report.added > 0) d.change_scene(relocation.plan);
-    lap(times.relayout, since);
-    return relocation.report;
+    const auto plan = [&](const DensifyInputs& inputs) { return plan_relocation(inputs, rules, d.iteration); };
+    const auto moves = [](const RelocationPlan& planned) {
+        return planned.report.relocated + planned.report.added > 0 ? &planned.plan : nullptr;
+    };
+    return d.plan_and_change(plan, moves).report;
 }
 
 size_t Trainer::remove(const std::vector<uint8_t>& keep) {
