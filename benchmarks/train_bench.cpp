@@ -158,8 +158,8 @@ int main(int argc, char** argv) {
         for (const auto& stage : result.stages) std::printf("  %s %.3f ms", stage.stage.c_str(), stage.milliseconds);
         std::printf("\n");
         std::printf("strategy %s: %zu pruned by importance in %llu events (%.1f s scoring)\n", result.strategy.c_str(),
-                    result.budget_events.pruned, static_cast<unsigned long long>(result.budget_events.prune_events),
-                    result.budget_events.importance_seconds);
+                    result.importance_prunes.pruned, static_cast<unsigned long long>(result.importance_prunes.prune_events),
+                    result.importance_prunes.importance_seconds);
         if (recipe.strategy == jobs::DensifyStrategy::mcmc)
             std::printf("mcmc: %zu relocated, %zu added\n", result.mcmc_events.relocated, result.mcmc_events.added);
         std::printf("test PSNR (%zu views): %.3f dB\n", result.test.psnr.size(), result.test.mean_psnr);

@@ -385,8 +385,8 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         notice(std::string("blend backward: ") +
                (trainer->blend_backward() == train::BlendBackward::per_splat ? "per splat" : "per pixel") +
                ", the faster of its two forms on this device");
-    if (budget_strategy) result.budget_events = budget_strategy->events();
-    if (reference_strategy) result.budget_events = reference_strategy->events();
+    if (budget_strategy) result.importance_prunes = budget_strategy->events();
+    if (reference_strategy) result.importance_prunes = reference_strategy->events();
     if (mcmc_strategy) result.mcmc_events = mcmc_strategy->events();
     result.gaussians = trainer->size();
     if (result.interrupted) return result;
@@ -428,8 +428,8 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                            {"test_psnr_per_view", result.test.psnr},
                            {"strategy", result.strategy},
                            {"deterministic", options.deterministic},
-                           {"pruned_by_importance", result.budget_events.pruned},
-                           {"importance_seconds", result.budget_events.importance_seconds},
+                           {"pruned_by_importance", result.importance_prunes.pruned},
+                           {"importance_seconds", result.importance_prunes.importance_seconds},
                            {"relocated", result.mcmc_events.relocated},
                            {"added_by_relocation", result.mcmc_events.added},
                            {"evaluate_seconds", result.evaluate_seconds},

@@ -77,7 +77,7 @@ void write_training_report(const fs::path& folder, const TrainResult& result, co
                               {"of which densification and pruning", number(result.strategy_seconds, "%.1f")},
                               {"GPU ms per iteration (median)", number(result.gpu_ms_per_iteration, "%.3f")},
                               {"peak device memory (MB)", number(double(result.peak_device_bytes) / 1e6, "%.1f")},
-                              {"removed by blend weight", std::to_string(result.budget_events.pruned)},
+                              {"removed by blend weight", std::to_string(result.importance_prunes.pruned)},
                               {"test SSIM", measured ? number(result.test.mean_ssim, "%.4f") : "-"}});
     page.write(folder / "report.html", mode);
 }

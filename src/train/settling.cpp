@@ -44,7 +44,7 @@ size_t settle_target(size_t count, size_t budget, int rounds_left) {
     return std::max(budget, size_t(std::llround(double(budget) * std::pow(double(count) / double(budget), share))));
 }
 
-void remove_least_important(Trainer& trainer, const Importance& importance, BudgetEvents& events,
+void remove_least_important(Trainer& trainer, const Importance& importance, ImportancePrunes& events,
                             const std::function<size_t(const std::vector<float>&)>& keep) {
     if (!importance) throw std::logic_error("settling: no importance function to rank by");
     const auto start = std::chrono::steady_clock::now();
@@ -76,7 +76,7 @@ void Settling::before_step(Trainer& trainer, uint64_t iteration) const {
     }
 }
 
-void Settling::after_step(Trainer& trainer, uint64_t iteration, BudgetEvents& events) const {
+void Settling::after_step(Trainer& trainer, uint64_t iteration, ImportancePrunes& events) const {
     const uint64_t spacing = std::max<uint64_t>(schedule_.spacing, 1);
     if (iteration < schedule_.at || (iteration - schedule_.at) % spacing != 0) return;
     const uint64_t round = (iteration - schedule_.at) / spacing;

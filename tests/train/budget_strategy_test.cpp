@@ -77,7 +77,7 @@ protected:
         std::map<uint64_t, double> rates;
         std::map<uint64_t, float> max_opacity;
         float final_max_scale = 0;
-        train::BudgetEvents events;
+        train::ImportancePrunes events;
         size_t final_count = 0;
     };
     // The reference's schedule scaled down to a hundred steps: densification every 10 steps from

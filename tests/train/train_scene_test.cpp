@@ -221,7 +221,7 @@ TEST_F(TrainScene, TheLeanRecipeKeepsWhatCarriesThePicture) {
     r.strategy = jobs::DensifyStrategy::automatic;
     const jobs::TrainResult lean = train(data, r, "lean");
     EXPECT_EQ(lean.strategy, "lean");
-    EXPECT_EQ(lean.budget_events.prune_events, 3u);
+    EXPECT_EQ(lean.importance_prunes.prune_events, 3u);
     EXPECT_LT(lean.gaussians, reference.gaussians);
     EXPECT_GT(lean.test.mean_psnr, reference.test.mean_psnr - 0.5);
     // Its share must be a share.

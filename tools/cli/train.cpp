@@ -95,11 +95,11 @@ int run_train(const TrainArgs& args) {
         std::printf("\n");
         std::printf("host time of scene changes: %s\n", train::describe(result.scene_changes).c_str());
     }
-    if (result.budget_events.prune_events > 0)
+    if (result.importance_prunes.prune_events > 0)
         std::printf("%s recipe: %zu Gaussians removed by blend weight in %llu prunes (%.1f s scoring)\n",
-                    result.strategy.c_str(), result.budget_events.pruned,
-                    static_cast<unsigned long long>(result.budget_events.prune_events),
-                    result.budget_events.importance_seconds);
+                    result.strategy.c_str(), result.importance_prunes.pruned,
+                    static_cast<unsigned long long>(result.importance_prunes.prune_events),
+                    result.importance_prunes.importance_seconds);
     if (result.mcmc_events.relocated + result.mcmc_events.added > 0)
         std::printf("mcmc recipe: %zu transparent Gaussians moved, %zu added\n", result.mcmc_events.relocated,
                     result.mcmc_events.added);

@@ -143,7 +143,7 @@ struct TrainSnapshot {
 struct TrainResult : train::LoopResult {
     size_t gaussians = 0;
     std::string strategy;              // "reference" or "budget"
-    train::BudgetEvents budget_events; // what the budget recipe or the reference's settling pruned by importance
+    train::ImportancePrunes importance_prunes; // what the budget or the lean recipe removed by importance
     train::McmcEvents mcmc_events;     // what the MCMC recipe moved and added
     std::vector<TrainSnapshot> history;
     double evaluate_seconds = 0;       // measuring history's test PSNR

@@ -83,14 +83,14 @@ public:
     BudgetStrategy(const ReferenceSchedule& reference, const BudgetSchedule& budget, Importance importance);
     void before_step(Trainer& trainer, uint64_t iteration) override;
     void after_step(Trainer& trainer, uint64_t iteration) override;
-    const BudgetEvents& events() const { return events_; }
+    const ImportancePrunes& events() const { return events_; }
 
 private:
     ReferenceSchedule reference_;
     BudgetSchedule budget_;
     Importance importance_;
     Settling settling_;
-    BudgetEvents events_;
+    ImportancePrunes events_;
 };
 
 }  // namespace vksplat::train

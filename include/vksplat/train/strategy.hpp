@@ -61,12 +61,12 @@ public:
         : schedule_(schedule), settling_(std::move(settling)) {}
     void before_step(Trainer& trainer, uint64_t iteration) override;
     void after_step(Trainer& trainer, uint64_t iteration) override;
-    const BudgetEvents& events() const { return events_; }
+    const ImportancePrunes& events() const { return events_; }
 
 private:
     ReferenceSchedule schedule_;
     std::optional<Settling> settling_;
-    BudgetEvents events_;
+    ImportancePrunes events_;
 };
 
 }  // namespace vksplat::train
