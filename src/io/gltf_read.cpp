@@ -125,9 +125,12 @@ std::vector<float> read_attribute(const Glb& glb, const Json& attributes, const 
     const uint64_t view_offset = view.value("byteOffset", uint64_t{0}), view_length = view.value("byteLength", uint64_t{0});
     const uint64_t stride = view.value("byteStride", uint64_t{element_bytes});
     const uint64_t start = accessor.value("byteOffset", uint64_t{0});
-    // 128 bits: counts, offsets and strides come from the file and may be anything.
-    const unsigned __int128 needed = static_cast<unsigned __int128>(count - 1) * stride + start + element_bytes;
-    if (stride < element_bytes || needed > view_length || view_offset > glb.bin.size() ||
+    // (count - 1) x stride + start + element_bytes <= view_length, checked without overflow: counts,
+    // offsets and strides come from the file and may be anything (a count of 0 makes count - 1 the
+    // largest value, which fits nowhere).
+    const bool fits = stride >= element_bytes && start <= view_length && element_bytes <= view_length - start &&
+                      uint64_t(count - 1) <= (view_length - start - element_bytes) / stride;
+    if (!fits || view_offset > glb.bin.size() ||
         view_length > glb.bin.size() - view_offset)
         throw InputError(where, accessor_name + " is out of range: it needs " + std::to_string(count) + " elements from byte " +
                                     std::to_string(start) + " of a bufferView of " + std::to_string(view_length) + " bytes at offset " +

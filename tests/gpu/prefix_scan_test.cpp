@@ -24,7 +24,11 @@ void record_scan(CommandStream& stream, VkDeviceAddress input, VkDeviceAddress o
     scan.record(stream, input, output, total, scratch);
 }
 
-std::string case_name(const testing::TestParamInfo<uint32_t>& info) { return "n" + std::to_string(info.param); }
+// Appended rather than "n" + to_string(...), which GCC 12 wrongly flags as an overlapping memcpy
+// (-Wrestrict, GCC bug 105651).
+std::string case_name(const testing::TestParamInfo<uint32_t>& info) {
+    return std::string("n").append(std::to_string(info.param));
+}
 
 class PrefixScanTest : public testing::TestWithParam<uint32_t> {};
 

@@ -41,7 +41,9 @@ TEST(ShPrecision, AnSpzFileHoldsTheRoundedValuesExactlyInFewerBytes) {
     const GaussianCloud back = io::read_spz(dir / "rounded.spz");
     ASSERT_EQ(back.sh.size(), rounded.sh.size());
     for (size_t f = 0; f < back.sh.size(); ++f) {
-        if (f % 48 >= 3) ASSERT_EQ(back.sh[f], rounded.sh[f]) << "SH float " << f;
+        if (f % 48 >= 3) {
+            ASSERT_EQ(back.sh[f], rounded.sh[f]) << "SH float " << f;
+        }
     }
     EXPECT_LT(std::filesystem::file_size(dir / "rounded.spz"),
               std::filesystem::file_size(dir / "full.spz") * 9 / 10);
