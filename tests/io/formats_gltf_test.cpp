@@ -248,6 +248,9 @@ TEST(FormatsGltf, DamagedFilesAreRefusedNamingTheFileAndTheProblem) {
             {"attribute POSITION", "out of range"});
     refused(edited_glb(dir, "view.glb", [](Json& d) { d["bufferViews"][2]["byteOffset"] = 1u << 30; }),
             {"out of range"});
+    // A stride whose product with the count passes 2^64 is out of range too, not wrapped into it.
+    refused(edited_glb(dir, "stride.glb", [](Json& d) { d["bufferViews"][0]["byteStride"] = uint64_t(1) << 62; }),
+            {"attribute POSITION", "out of range"});
     refused(edited_glb(dir, "count.glb", [](Json& d) { d["accessors"][3]["count"] = 4; }),
             {"holds 4 elements where POSITION holds 5"});
     refused(edited_glb(dir, "missing.glb", [](Json& d) { primitive_of(d)["attributes"].erase("KHR_gaussian_splatting:SCALE"); }),
