@@ -394,8 +394,9 @@ TEST_F(Sweep, SizesEveryModelInEachFormatAsItsWriterDoes) {
 
 // The time left the sweep reports covers all of it, re-fits included (issue 32: a re-fit's 20
 // minutes were left out, and it ran at "0.0 s left"). It is not guessed before a re-fit has stepped;
-// from then on each report is at most 20% above the one before, none says nothing is left before
-// the last, and the first is within a factor of two of the time that really followed.
+// from then on each report is at most 20% above the one before (plus timing noise), none says
+// nothing is left before the last, and the first is within a factor of two of the time that really
+// followed.
 TEST_F(Sweep, ReportsATimeLeftThatFallsThroughScoringAndReFits) {
     auto o = options(dir / "out");
     o.methods = {prune::ScoreMethod::blend};
@@ -428,6 +429,10 @@ TEST_F(Sweep, ReportsATimeLeftThatFallsThroughScoringAndReFits) {
     EXPECT_GE(refit_reports, 6u) << "the start and at least the end of each of 3 re-fits";
     ASSERT_LT(first_step, reports.size());
     EXPECT_EQ(reports.back().stage, "comparison sheets");
+    // The estimates come from wall-clock rates, which jitter when other tests share the cores: a rise
+    // of a tenth of the first estimate is that noise (a README test run saw 0.21 s become 0.30 s), not
+    // the left-out re-fit this test is about.
+    const double slack = std::max(0.05, 0.1 * reports[first_step].left.value_or(0.0));
     for (size_t i = 0; i < reports.size(); ++i) {
         const Report& r = reports[i];
         SCOPED_TRACE(r.stage + " " + std::to_string(r.done) + "/" + std::to_string(r.total));
@@ -440,7 +445,7 @@ TEST_F(Sweep, ReportsATimeLeftThatFallsThroughScoringAndReFits) {
             EXPECT_GT(*r.left, 0.0) << "no time left while there is work left";
         }
         if (i > first_step) {
-            EXPECT_LE(*r.left, 1.2 * *reports[i - 1].left + 0.05);
+            EXPECT_LE(*r.left, 1.2 * *reports[i - 1].left + slack);
         }
     }
     EXPECT_EQ(*reports.back().left, 0.0);
