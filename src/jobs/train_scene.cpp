@@ -87,25 +87,6 @@ GaussianCloud random_subset(const GaussianCloud& cloud, size_t count, uint64_t s
     return cloud.subset(keep);
 }
 
-// The budget recipe's importance: a prune module score (recipe.budget_score) over the training
-// views, rendered on the trainer's current Gaussians.
-train::Importance importance_over(const gpu::Context& context, const TrainingData& data, const TrainOptions& options) {
-    RenderSettings settings;
-    settings.background = options.background;
-    // A renderer of its own each time, so that its device memory is held only while it scores.
-    const bool sampling = options.recipe.budget_sampling;
-    const prune::ScoreMethod method = options.recipe.budget_score;
-    return [&context, settings, &data, sampling, method, seed = options.seed](const GaussianCloud& cloud) {
-        Renderer renderer(context);
-        const prune::ViewTotals totals = prune::accumulate(renderer, cloud, data.cameras, data.train_views, settings,
-                                                           {}, prune::needs_fisher(method));
-        std::vector<float> scores = prune::score(cloud, totals, method, seed);
-        // Seeded by the count too, which differs between rounds and is the same in a resumed run.
-        return sampling ? prune::sampling_keys(prune::sampling_weights(scores, method), seed ^ (uint64_t(cloud.size()) << 20))
-                        : scores;
-    };
-}
-
 // Median GPU time of each pass of a step, in recording order.
 nlohmann::json stages_json(const std::vector<StageTiming>& stages) {
     nlohmann::json out = nlohmann::json::array();
@@ -238,6 +219,27 @@ TrainingData load_training_data(const fs::path& data_dir, const TrainRecipe& rec
     return data;
 }
 
+train::Importance settling_importance(const gpu::Context& context, const TrainingData& data, const TrainOptions& options) {
+    RenderSettings settings;
+    settings.background = options.background;
+    const bool sampling = options.recipe.budget_sampling;
+    const prune::ScoreMethod method = options.recipe.budget_score;
+    return [&context, settings, &data, sampling, method, seed = options.seed](const GaussianCloud& cloud) {
+        // A renderer of its own each time, so that its device memory is held only while it scores.
+        Renderer renderer(context);
+        // Blend weights depend on each Gaussian's shape and opacity, never on its colour, so the
+        // scene is rendered without its higher SH bands (three quarters of its bytes at degree 3,
+        // held beside the trainer's scene): the same statistics. The Fisher score's loss sees colour.
+        const bool colour = prune::needs_fisher(method);
+        const prune::ViewTotals totals = prune::accumulate(renderer, colour ? cloud : cloud.with_sh_degree(0),
+                                                           data.cameras, data.train_views, settings, {}, colour);
+        std::vector<float> scores = prune::score(cloud, totals, method, seed);
+        // Seeded by the count too, which differs between rounds and is the same in a resumed run.
+        return sampling ? prune::sampling_keys(prune::sampling_weights(scores, method), seed ^ (uint64_t(cloud.size()) << 20))
+                        : scores;
+    };
+}
+
 TrainResult train_scene(const gpu::Context& context, const TrainingData& data, const PhotoSource& photos,
                         const TrainOptions& options, const TestMeasure& measure,
                         const std::function<void(const train::LoopStatus&)>& progress) {
@@ -323,7 +325,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         std::optional<train::Settling> settling;
         if (strategy_kind == DensifyStrategy::lean && settle.at > 0 && settle.at < recipe.iterations)
             settling.emplace(settle, train::SettleTarget{.share = recipe.lean.keep_share},
-                             importance_over(context, data, options));
+                             settling_importance(context, data, options));
         strategy = std::make_unique<train::ReferenceStrategy>(schedule, std::move(settling));
         reference_strategy = static_cast<train::ReferenceStrategy*>(strategy.get());
     } else if (strategy_kind == DensifyStrategy::mcmc) {
@@ -345,7 +347,7 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         budget.settle = settle;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
-        strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, importance_over(context, data, options));
+        strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, settling_importance(context, data, options));
         budget_strategy = static_cast<train::BudgetStrategy*>(strategy.get());
     }
 
@@ -369,12 +371,14 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                             .stop = options.stop,
                             .source = "training from " + data.folder.string(),
                             .snapshot_every = kSnapshotEvery,
-                            .snapshot = [&](const train::Trainer& t, uint64_t iteration) {
+                            .snapshot = [&](train::Trainer& t, uint64_t iteration) {
                                 TrainSnapshot snapshot{iteration, t.size(), {}};
                                 const bool last = iteration == recipe.iterations;
                                 if (measure && !test.cameras.empty() && options.evaluate_every > 0 &&
-                                    (iteration % options.evaluate_every == 0 || last))
+                                    (iteration % options.evaluate_every == 0 || last)) {
+                                    t.release_frame();  // the measure renders with a frame of its own
                                     snapshot.test_psnr = measure(t.cloud(), test).mean_psnr;
+                                }
                                 result.history.push_back(snapshot);
                             }};
     static_cast<train::LoopResult&>(result) =

@@ -48,6 +48,9 @@ void remove_least_important(Trainer& trainer, const Importance& importance, Impo
                             const std::function<size_t(const std::vector<float>&)>& keep) {
     if (!importance) throw std::logic_error("settling: no importance function to rank by");
     const auto start = std::chrono::steady_clock::now();
+    // The importance renders the training views with a renderer of its own, and the removal that
+    // follows frees the trainer's frame anyway: freed first, the two frames are never held at once.
+    trainer.release_frame();
     const std::vector<float> scores = importance(trainer.cloud());
     events.importance_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (scores.size() != trainer.size()) throw std::logic_error("settling: the importance function scored another scene");

@@ -451,6 +451,11 @@ GaussianCloud Trainer::cloud() const {
     return impl_->scene.download(impl_->context);
 }
 
+void Trainer::release_frame() {
+    impl_->finish();
+    impl_->renderer.release_frame();
+}
+
 uint64_t Trainer::device_bytes() const {
     const auto& d = *impl_;
     return d.scene.device_bytes() + d.renderer.device_bytes() + d.loss.device_bytes() + d.densify.device_bytes() +

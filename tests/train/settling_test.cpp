@@ -1,11 +1,13 @@
-// Settling inside training (train::Settling): the counts it keeps, on the host, and the reference
-// recipe settling to a share of the importance on lavapipe.
+// Settling inside training (train::Settling): the counts it keeps, on the host, and on lavapipe the
+// reference recipe settling to a share of the importance, and what scoring holds in device memory.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <map>
 #include <vector>
 
+#include "vksplat/jobs/train_scene.hpp"
+#include "vksplat/prune/accumulate.hpp"
 #include "vksplat/prune/scores.hpp"
 #include "vksplat/train/strategy.hpp"
 #include "vksplat/train/training_loop.hpp"
@@ -103,6 +105,43 @@ TEST_F(ReferenceSettling, KeepsTheGaussiansCarryingTheShare) {
     EXPECT_EQ(trainer.size(), counts.at(80));
     EXPECT_EQ(strategy.events().prune_events, 2u);
     EXPECT_EQ(strategy.events().pruned, scored[0].size() - trainer.size());
+}
+
+// The recipes' importance (jobs::settling_importance) renders the scene without its higher SH bands:
+// blend weights do not depend on colour, so the scores are those of the scene as it is.
+TEST_F(ReferenceSettling, ScoringWithoutColourGivesTheScoresOfTheScene) {
+    ASSERT_GT(truth.sh_degree, 0);
+    jobs::TrainingData data;
+    data.cameras = cameras;
+    data.train_views = views;
+    jobs::TrainOptions options;
+    RenderSettings settings;
+    settings.background = options.background;
+    for (prune::ScoreMethod method : {prune::ScoreMethod::blend, prune::ScoreMethod::blend_mix}) {
+        options.recipe.budget_score = method;
+        const std::vector<float> scored = jobs::settling_importance(context(), data, options)(truth);
+        const prune::ViewTotals totals = prune::accumulate(renderer, truth, cameras, views, settings);
+        EXPECT_EQ(scored, prune::score(truth, totals, method, options.seed)) << prune::to_string(method);
+    }
+}
+
+// Scoring renders every training view with a renderer of its own: the trainer's frame is freed
+// first, so that a settling round holds no more device memory than a step does.
+TEST_F(ReferenceSettling, ScoringHoldsNoMoreThanAStep) {
+    train::Trainer trainer(context(), truth, {});
+    for (size_t v : views) trainer.step(cameras[v], photos.at(v));
+    const uint64_t step_bytes = context().held_device_bytes();
+    jobs::TrainingData data;
+    data.cameras = cameras;
+    data.train_views = views;
+    const train::Importance importance = jobs::settling_importance(context(), data, {});
+    context().reset_peak_device_bytes();
+    train::ImportancePrunes events;
+    train::remove_least_important(trainer, importance, events,
+                                  [](const std::vector<float>& scores) { return scores.size() / 2; });
+    EXPECT_EQ(trainer.size(), truth.size() / 2);
+    EXPECT_LE(context().peak_device_bytes(), step_bytes)
+        << "step " << step_bytes << " bytes, scoring and removal " << context().peak_device_bytes();
 }
 
 }  // namespace

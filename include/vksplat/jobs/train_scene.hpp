@@ -164,6 +164,12 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
                         const TrainOptions& options, const TestMeasure& measure,
                         const std::function<void(const train::LoopStatus&)>& progress = {});
 
+// What the budget and lean recipes settle by (train::Settling): options.recipe.budget_score over
+// data's training views, rendered on the trainer's current Gaussians by a renderer of its own
+// (sampling keys instead where recipe.budget_sampling). The function refers to `context` and
+// `data`, which must outlive it.
+train::Importance settling_importance(const gpu::Context& context, const TrainingData& data, const TrainOptions& options);
+
 // The Gaussians a memory budget leaves room for: the trainer's bytes per Gaussian (parameters,
 // Adam's moments, frame and per-splat buffers) against the budget less the per-pixel buffers.
 size_t gaussians_within(uint64_t budget, int sh_degree, uint64_t pixels);

@@ -40,7 +40,8 @@ struct ImportancePrunes {
     double importance_seconds = 0;  // spent scoring
 };
 
-// Scores the trainer's Gaussians and keeps the `keep(scores)` most important.
+// Scores the trainer's Gaussians (its frame released first: Trainer::release_frame) and keeps the
+// `keep(scores)` most important.
 void remove_least_important(Trainer& trainer, const Importance& importance, ImportancePrunes& events,
                             const std::function<size_t(const std::vector<float>&)>& keep);
 

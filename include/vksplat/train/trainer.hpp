@@ -246,6 +246,11 @@ public:
     size_t size() const;
     // The current parameters (read back from the device).
     GaussianCloud cloud() const;
+    // Waits for the step in flight and frees what only a step uses (the frame, the per-splat
+    // sums), which the next step allocates again: for a caller that renders with a renderer of its
+    // own between steps (a settling's scoring, an evaluation), so that the two frames are not held
+    // at once. The scene, Adam's moments and the loss's buffers stay.
+    void release_frame();
     // Device memory its buffers hold now (parameters, Adam's moments, frame, loss). A step's and
     // densification's transients are not in it: the context's peak_device_bytes() has them.
     uint64_t device_bytes() const;

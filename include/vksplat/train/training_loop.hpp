@@ -34,9 +34,10 @@ struct LoopOptions {
     const std::atomic<bool>* stop = nullptr;  // raised: checkpoint and return with interrupted set
     std::string source;                 // names the run in errors ("finetune of a.ply")
     // Called after every snapshot_every-th step (0: never) and after the last, to record how the
-    // run goes; its time is not in LoopResult::seconds.
+    // run goes; its time is not in LoopResult::seconds. Not const: one that renders may free the
+    // trainer's frame first (Trainer::release_frame).
     uint64_t snapshot_every = 0;
-    std::function<void(const Trainer&, uint64_t iteration)> snapshot = nullptr;
+    std::function<void(Trainer&, uint64_t iteration)> snapshot = nullptr;
 };
 
 struct LoopStatus {
