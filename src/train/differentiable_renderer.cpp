@@ -153,7 +153,8 @@ void DifferentiableRenderer::grow_entries(uint32_t needed) {
 }
 
 void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const TrainableScene& scene,
-                                            const render::CameraParams& camera_params) {
+                                            const render::CameraParams& camera_params,
+                                            const std::function<void()>& beside_blend) {
     // Densification reads the radii the projection holds.
     render::CameraParams params = camera_params;
     params.write_projection = 1;
@@ -163,6 +164,7 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     // preprocess_trainable.comp reads the raw parameters and activates them as it reads them.
     binning_.record(stream, frame_, params, {scene.params.address(), scene.sh_address(), n});
     auto& f = frame_;
+    if (beside_blend) beside_blend();
     stream.dispatch(*blend_,
                     {.blend = render::blend_frame(f),
                      .train = {.out_transmittance = transmittance_.address(), .out_last = last_.address()}},

@@ -12,6 +12,7 @@
 // preprocess_backward_fixed,sh_backward}.comp, layouts in shaders/train/differentiable_renderer.h.
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -90,8 +91,11 @@ public:
     uint32_t entry_capacity() const { return frame_.entry_capacity; }
 
     // The forward frame of `scene` with `params` (its gaussian_count, sh_degree and entry
-    // capacity filled in by the caller): leaves colour and alpha in color_alpha().
-    void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params);
+    // capacity filled in by the caller): leaves colour and alpha in color_alpha(). `beside_blend`
+    // records commands just before the blend with no barrier between them, so that they run while
+    // it does; the barrier after the blend waits for them.
+    void record_forward(gpu::CommandStream& stream, const TrainableScene& scene, const render::CameraParams& params,
+                        const std::function<void()>& beside_blend = {});
     // The gradients of every raw parameter from dL/d rgb per pixel (vec4, at `pixel_grad`): into
     // scene.grads, or, given a step's Adam settings (`adam`, shaders/train/adam_step.h), straight
     // into Adam's step of scene.params and its moments, so that they need no array of their own.

@@ -269,10 +269,11 @@ void Trainer::Impl::record(Slot& slot, bool again) {
     stream.begin();
     // The step before may still run: it reads the photo and every buffer this one writes.
     stream.barrier_after_everything();
-    stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4);
     const shader::train::AdamSettings adam = adam_settings_of(slot);
     stream.update(adam_settings, &adam, sizeof(adam));
-    renderer.record_forward(stream, scene, params);
+    // The loss is the first to read the photo: its upload runs beside the blend. At the start of
+    // the step, the barrier after it held every pass back until the upload had crossed the bus.
+    renderer.record_forward(stream, scene, params, [&] { stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4); });
     loss.record(stream,
                 {renderer.color_alpha().address(), photo.address(), pixel_grad.address(), uint32_t(camera.width),
                  uint32_t(camera.height), float(options.ssim_weight)},
