@@ -23,11 +23,6 @@ constexpr uint32_t kRadixMax = RADIX_MAX;
 static_assert(kRadixMax == 1u << kMaxDigitBits);
 constexpr uint32_t kMaxPasses = MAX_PASSES;
 constexpr uint32_t kItemsPerThread = 16;
-// Small sorts run one sweep of blocks a quarter the size. A pass of few blocks waits on one
-// block's chain (load, rank, write; an empty frame's depth sort spent 11 us a pass on an H200),
-// whose ranking is serial over an invocation's keys: fewer keys each shorten it, and more blocks
-// fill more of the device.
-constexpr uint32_t kSmallItemsPerThread = 4;
 // Per digit, the scatter keeps a count per subgroup (the ranking loops over them), so subgroups
 // per workgroup are capped.
 constexpr uint32_t kMaxSubgroupsPerGroup = 16;
@@ -38,8 +33,6 @@ constexpr uint32_t kMaxSubgroupsPerGroup = 16;
 // three kernels per pass (block histogram, its scan, scatter) instead. On an H100 one sweep was
 // faster at 120 blocks (lego's depth sort: 0.118 vs 0.135 ms) and slower at 309 (0.081 vs 0.074).
 constexpr uint32_t kOneSweepMaxBlocks = 192;
-// Sorts of at most this many full-size blocks take the small blocks, at most kOneSweepMaxBlocks of them.
-constexpr uint32_t kSmallSortMaxBlocks = kOneSweepMaxBlocks * kSmallItemsPerThread / kItemsPerThread;
 
 // Shared memory of a scatter workgroup (radix_block.glsl, radix_scatter_one_sweep.comp): the staged
 // block, a count per digit and subgroup, and per digit its displacement and fallback count.
@@ -51,7 +44,6 @@ struct Config {
     uint32_t workgroup_size;
     uint32_t max_subgroups;
     uint32_t block_size() const { return workgroup_size * kItemsPerThread; }
-    uint32_t small_block_size() const { return workgroup_size * kSmallItemsPerThread; }
 };
 
 // The widest workgroup of 256 or 128 invocations that the device runs, whose subgroups are at
@@ -83,13 +75,12 @@ constexpr VkDeviceSize kTotalsOffset = RADIX_TOTALS * 4;
 constexpr VkDeviceSize kTotalsBytes = VkDeviceSize(kMaxPasses) * kRadixMax * 4;
 constexpr VkDeviceSize kControlBytes = kTotalsOffset + kTotalsBytes;
 
-// The per-block words: look-back words of every pass for one-sweep sorts (of small blocks where
-// they are small: as many of those as fit the one-sweep limit), one pass's histogram for larger ones.
-VkDeviceSize block_words_bytes(uint32_t count, const Config& config) {
-    const uint64_t blocks = blocks_for(count, config.block_size());
-    const uint64_t small_blocks = blocks_for(count, config.small_block_size());
+// The per-block words: look-back words of every pass for one-sweep sorts, one pass's histogram
+// for larger ones.
+VkDeviceSize block_words_bytes(uint32_t count, uint32_t block) {
+    const uint64_t blocks = blocks_for(count, block);
     return std::max(VkDeviceSize(kRadixMax) * blocks,
-                    VkDeviceSize(kMaxPasses) * kRadixMax * std::min<uint64_t>(small_blocks, kOneSweepMaxBlocks)) *
+                    VkDeviceSize(kMaxPasses) * kRadixMax * std::min<uint64_t>(blocks, kOneSweepMaxBlocks)) *
            4;
 }
 
@@ -99,12 +90,12 @@ RadixSort::Scratch::Scratch(const Context& context, uint32_t max_count)
     : capacity_(max_count),
       keys_(context, VkDeviceSize(max_count) * 4, MemoryKind::device, "radix sort keys"),
       values_(context, VkDeviceSize(max_count) * 4, MemoryKind::device, "radix sort values"),
-      block_words_(context, block_words_bytes(max_count, config_for(context.info())),
+      block_words_(context, block_words_bytes(max_count, config_for(context.info()).block_size()),
                    MemoryKind::device, "radix sort block words"),
       control_(context, kControlBytes, MemoryKind::device, "radix sort control") {}
 
 uint64_t RadixSort::Scratch::bytes_for(const Context& context, uint32_t max_count) {
-    return VkDeviceSize(max_count) * 8 + block_words_bytes(max_count, config_for(context.info())) +
+    return VkDeviceSize(max_count) * 8 + block_words_bytes(max_count, config_for(context.info()).block_size()) +
            kControlBytes;
 }
 
@@ -113,15 +104,9 @@ uint64_t RadixSort::Scratch::bytes_for(const Context& context, uint32_t max_coun
 RadixSort::RadixSort(const Context& context, uint32_t lookback_spins) {
     const Config config = config_for(context.info());
     block_size_ = config.block_size();
-    small_block_size_ = config.small_block_size();
     setup_ = std::make_unique<Kernel<RadixSetupKernel>>(context);
     histogram_ = std::make_unique<Kernel<RadixHistogramKernel>>(
         context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread});
-    small_histogram_ = std::make_unique<Kernel<RadixHistogramKernel>>(
-        context, std::vector<uint32_t>{config.workgroup_size, kSmallItemsPerThread});
-    small_one_sweep_scatter_ = std::make_unique<Kernel<RadixScatterOneSweepKernel>>(
-        context,
-        std::vector<uint32_t>{config.workgroup_size, kSmallItemsPerThread, config.max_subgroups, lookback_spins});
     block_histogram_ = std::make_unique<Kernel<RadixBlockHistogramKernel>>(
         context, std::vector<uint32_t>{config.workgroup_size, kItemsPerThread});
     scan_histogram_ = std::make_unique<Kernel<RadixScanHistogramKernel>>(
@@ -151,18 +136,13 @@ bool RadixSort::one_sweep(uint64_t capacity) const {
     return blocks_for(static_cast<uint32_t>(capacity), block_size_) <= kOneSweepMaxBlocks;
 }
 
-uint32_t RadixSort::block_size(uint64_t capacity) const {
-    return blocks_for(static_cast<uint32_t>(capacity), block_size_) <= kSmallSortMaxBlocks ? small_block_size_
-                                                                                          : block_size_;
-}
-
 void RadixSort::record_setup(CommandStream& stream, const Buffer& keys, const Buffer& values,
                              VkDeviceAddress count_address, Scratch& scratch) const {
     stream.dispatch(*setup_,
                     {.count = count_address,
                      .control = scratch.control_.address(),
                      .capacity = static_cast<uint32_t>(capacity(keys, values, scratch)),
-                     .block = block_size(capacity(keys, values, scratch))},
+                     .block = block_size_},
                     1);
 }
 
@@ -194,7 +174,7 @@ std::optional<RadixSort::DigitCounting> RadixSort::record_host_setup(CommandStre
     // an H200; small updates did not); the producer empties the look-back words, as the histogram
     // kernel would.
     const uint32_t clamped = static_cast<uint32_t>(std::min<uint64_t>(count, held));
-    const uint32_t blocks = blocks_for(clamped, block_size(held));
+    const uint32_t blocks = blocks_for(clamped, block_size_);
     std::array<uint32_t, kControlBytes / 4> control{};
     control[0] = std::min(blocks, shader::MAX_GROUPS_X);
     control[1] = control[2] = 1;
@@ -217,9 +197,7 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
         bits[pass] = layout.digits[pass] >> 8;
     }
 
-    const uint64_t held = capacity(keys, values, scratch);
-    const bool sweep = one_sweep(held);
-    const bool small = block_size(held) != block_size_;
+    const bool sweep = one_sweep(capacity(keys, values, scratch));
     if (digits_counted && !sweep)
         throw std::logic_error("RadixSort: digits counted by their producer, but the sort does not run one sweep");
     const VkDeviceAddress control = scratch.control_.address();
@@ -232,7 +210,7 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
                                      .digits = {},
                                      .passes = passes};
         for (uint32_t pass = 0; pass < passes; ++pass) histogram.digits[pass] = layout.digits[pass];
-        stream.dispatch_indirect(small ? *small_histogram_ : *histogram_, histogram, scratch.control_, 0);
+        stream.dispatch_indirect(*histogram_, histogram, scratch.control_, 0);
         stream.barrier();
     }
 
@@ -258,7 +236,7 @@ void RadixSort::record(CommandStream& stream, const Buffer& keys, const Buffer& 
             stream.barrier();
         }
         if (sweep)
-            stream.dispatch_indirect(small ? *small_one_sweep_scatter_ : *one_sweep_scatter_,
+            stream.dispatch_indirect(*one_sweep_scatter_,
                                      {.keys_in = source_keys->address(),
                                       .values_in = source_values->address(),
                                       .keys_out = target_keys->address(),

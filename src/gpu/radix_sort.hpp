@@ -5,8 +5,8 @@
 // shared memory and writes it in runs. Where the earlier blocks' digit counts come from depends on
 // the size (radix_sort.cpp): small sorts run one sweep (one histogram kernel for all passes, then
 // decoupled look-back inside the scatter, with a fallback that needs no forward-progress
-// guarantee: 1 + passes kernels; the smallest over blocks a quarter the size), large ones a block
-// histogram and its scan per pass (3 x passes kernels). A frame's fixed cost is its chain of dependent kernels, about 4.5 us each
+// guarantee: 1 + passes kernels), large ones a block histogram and its scan per pass
+// (3 x passes kernels). A frame's fixed cost is its chain of dependent kernels, about 4.5 us each
 // on an H100 however little they do; large sorts are bound by memory instead.
 // Kernels: shaders/sort/radix_*.comp, layouts in shaders/sort/radix_sort.h.
 // Works for any subgroup size (sizes come from DeviceInfo as specialisation constants; the
@@ -106,9 +106,6 @@ public:
 
     // Keys per block of the histogram and scatter kernels on this device.
     uint32_t block_size() const { return block_size_; }
-    // ... of a sort of buffers holding `capacity` pairs: a quarter of block_size() for sorts of at
-    // most a quarter of the one-sweep limit, whose passes wait on one block's ranking.
-    uint32_t block_size(uint64_t capacity) const;
     // ... on a device of these properties (radix_sort.cpp says how they choose it).
     static uint32_t block_size_for(const DeviceInfo& info);
 
@@ -119,13 +116,10 @@ private:
     static uint64_t capacity(const Buffer& keys, const Buffer& values, const Scratch& scratch);
     bool one_sweep(uint64_t capacity) const;
 
-    uint32_t block_size_ = 0, small_block_size_ = 0;
+    uint32_t block_size_ = 0;
     std::unique_ptr<Kernel<shader::sort::RadixSetupKernel>> setup_;
     std::unique_ptr<Kernel<shader::sort::RadixHistogramKernel>> histogram_;  // one sweep: every pass's digit totals
     std::unique_ptr<Kernel<shader::sort::RadixScatterOneSweepKernel>> one_sweep_scatter_;
-    // The same two over small blocks (block_size(capacity)).
-    std::unique_ptr<Kernel<shader::sort::RadixHistogramKernel>> small_histogram_;
-    std::unique_ptr<Kernel<shader::sort::RadixScatterOneSweepKernel>> small_one_sweep_scatter_;
     std::unique_ptr<Kernel<shader::sort::RadixBlockHistogramKernel>> block_histogram_;  // large sorts, per pass
     std::unique_ptr<Kernel<shader::sort::RadixScanHistogramKernel>> scan_histogram_;
     std::unique_ptr<Kernel<shader::sort::RadixScatterKernel>> scatter_;

@@ -164,8 +164,6 @@ std::vector<SortCase> sort_cases() {
         cases.push_back({4097, bits, Pattern::sorted});
         cases.push_back({4097, bits, Pattern::reversed});
     }
-    cases.push_back({40009, 32, Pattern::random});  // many small blocks (SmallSortsTakeSmallBlocks)
-    cases.push_back({40009, 16, Pattern::few_distinct});
     cases.push_back({100003, 32, Pattern::all_equal});
     cases.push_back({100003, 32, Pattern::sorted});
     cases.push_back({100003, 16, Pattern::few_distinct});
@@ -183,22 +181,7 @@ TEST(RadixSort, CountsUnpublishedPredecessorsItself) {
     for (uint32_t bits : {32u, 12u}) {
         check_sort(100003, bits, Pattern::random, false, impatient);
         check_sort(100003, bits, Pattern::few_distinct, false, impatient);
-        // ... and over small blocks (RadixSort::block_size(capacity)).
-        check_sort(40009, bits, Pattern::random, false, impatient);
     }
-}
-
-// Sorts of at most 48 full blocks (a quarter of the one-sweep limit of 192) run over blocks a
-// quarter the size: at most 192 of them. The sort cases above cover both sides (4,097 pairs and
-// fewer, 100,003) and the multi-kernel sorts (10^6).
-TEST(RadixSort, SmallSortsTakeSmallBlocks) {
-    const RadixSort& sort = shared_sort();
-    const uint32_t block = sort.block_size();
-    EXPECT_EQ(sort.block_size(1), block / 4);
-    EXPECT_EQ(sort.block_size(48u * block), block / 4);
-    EXPECT_EQ(sort.block_size(48u * block + 1), block);
-    EXPECT_EQ(sort.block_size(1000000), block);
-    EXPECT_LT(40009u, 48u * block) << "CountsUnpublishedPredecessorsItself's small case is not small here";
 }
 
 // Checks a 10^6-pair 32-bit sort and prints its GPU time (information only, no assertion): the
@@ -349,8 +332,7 @@ TEST(RadixSort, HostSetupOnlyForOneSweepSorts) {
     for (uint32_t pass = 0; pass < 4; ++pass) EXPECT_EQ(depth->digits[pass], pass * 8 | 8u << 8);
     EXPECT_NE(depth->totals.value, 0u);
     EXPECT_NE(depth->lookback.value, 0u);
-    const uint32_t blocks = (small + shared_sort().block_size(small) - 1) / shared_sort().block_size(small);
-    EXPECT_EQ(depth->lookback_words, blocks * 4u * 256u);  // every pass's words of each block
+    EXPECT_EQ(depth->lookback_words, 4u * 256u);  // one block: its words of every pass
     stream.barrier();  // the same scratch is set up again
     const auto tiles = shared_sort().record_host_setup(stream, small_keys, small_values, small, 12, small_scratch);
     ASSERT_TRUE(tiles.has_value());
