@@ -61,7 +61,8 @@ done
 [ -n "$xvfb_pid" ] || { echo "FAILED: no virtual display"; cat "$work/xvfb.log"; exit 1; }
 
 # wait_title PATTERN: waits (up to 120 s on a busy CPU) until the title matches; the viewer sets
-# the title after a frame is on screen, so a match means the frame is there.
+# the title after it presents a frame, so a match means the frame is drawn (Xvfb may show it a
+# moment later: see shot_differing).
 window=
 wait_title() {
   for _ in $(seq 600); do
