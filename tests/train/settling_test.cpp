@@ -62,6 +62,13 @@ TEST(Settling, RefusesATargetItCannotReach) {
 class ReferenceSettling : public PhotographedViews {
 protected:
     ReferenceSettling() : PhotographedViews(60) {}
+    // The photographed views as a training run's data, for jobs::settling_importance.
+    jobs::TrainingData training_data() const {
+        jobs::TrainingData data;
+        data.cameras = cameras;
+        data.train_views = views;
+        return data;
+    }
 };
 
 // The reference recipe, scaled down, settling to the Gaussians that carry 80% of the importance
@@ -112,9 +119,7 @@ TEST_F(ReferenceSettling, KeepsTheGaussiansCarryingTheShare) {
 TEST_F(ReferenceSettling, ScoringWithoutColourGivesTheScoresOfTheScene) {
     // The scene's higher bands carry colour, which the scoring leaves out.
     ASSERT_NE(truth.with_sh_degree(0).with_sh_degree(truth.sh_degree).sh, truth.sh);
-    jobs::TrainingData data;
-    data.cameras = cameras;
-    data.train_views = views;
+    const jobs::TrainingData data = training_data();
     jobs::TrainOptions options;
     RenderSettings settings;
     settings.background = options.background;
@@ -132,9 +137,7 @@ TEST_F(ReferenceSettling, ScoringHoldsNoMoreThanAStep) {
     train::Trainer trainer(context(), truth, {});
     for (size_t v : views) trainer.step(cameras[v], photos.at(v));
     const uint64_t step_bytes = context().held_device_bytes();
-    jobs::TrainingData data;
-    data.cameras = cameras;
-    data.train_views = views;
+    const jobs::TrainingData data = training_data();
     const train::Importance importance = jobs::settling_importance(context(), data, {});
     context().reset_peak_device_bytes();
     train::ImportancePrunes events;
