@@ -11,6 +11,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <optional>
 
 #include "vksplat/error.hpp"
@@ -59,7 +60,10 @@ int main(int argc, char** argv) {
     app.add_option("--min-gradient", recipe.budget.min_gradient);
     app.add_option("--prune-ratio", recipe.budget.prune_ratio);
     app.add_option("--start-fraction", recipe.start_fraction);
-    app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
+    auto* peak_option =
+        app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
+    auto* peak_limit_option = app.add_option("--peak-limit", recipe.budget.peak_limit,
+                                             "grow to at most this many Gaussians (default: unlimited with --peak)");
     app.add_option("--others-final", recipe.rates.others_final,
                    "the rates but position's decay to this multiple of themselves by the end");
     app.add_option("--settle-rounds", recipe.budget.settle.rounds, "settle in this many rounds");
@@ -91,6 +95,9 @@ int main(int argc, char** argv) {
     app.add_flag("--pipeline-stats", pipeline_stats,
                  "print what the driver says of the training passes' pipelines (registers, shared memory, ...)");
     CLI11_PARSE(app, argc, argv);
+    // As `vksplat train --budget-peak`: a multiple asked for is grown to.
+    if (peak_option->count() && !peak_limit_option->count())
+        recipe.budget.peak_limit = std::numeric_limits<size_t>::max();
     try {
         recipe.densify.max_gaussians = max_gaussians;
         if (densify_until) recipe.densify_until = recipe.budget.densify_until = recipe.lean.densify_until = *densify_until;

@@ -6,9 +6,14 @@
 
 namespace vksplat::train {
 
+size_t peak_count(const BudgetSchedule& budget) {
+    const double grown = double(budget.budget) * std::max(1.0, budget.peak);
+    return std::max(budget.budget, std::min(size_t(std::llround(grown)), budget.peak_limit));
+}
+
 size_t growth_target(const ReferenceSchedule& reference, const BudgetSchedule& budget, uint64_t iteration) {
     if (budget.budget <= budget.start) return budget.budget;
-    const size_t peak = size_t(std::llround(double(budget.budget) * std::max(1.0, budget.peak)));
+    const size_t peak = peak_count(budget);
     const double from = double(reference.densify_from);
     const double span = budget.reach * (double(reference.densify_until) - from);
     const double p = span > 0 ? std::clamp((double(iteration) - from) / span, 0.0, 1.0) : 1.0;
@@ -26,7 +31,7 @@ BudgetStrategy::BudgetStrategy(const ReferenceSchedule& reference, const BudgetS
         throw std::invalid_argument("BudgetStrategy: prune ratio must lie in [0, 1)");
     if (!(budget_.peak >= 1))
         throw std::invalid_argument("BudgetStrategy: the peak must be at least the budget");
-    if ((budget_.prune_ratio > 0 || budget_.peak > 1) && !importance_)
+    if ((budget_.prune_ratio > 0 || peak_count(budget_) > budget_.budget) && !importance_)
         throw std::invalid_argument("BudgetStrategy: pruning needs an importance function");
 }
 

@@ -52,6 +52,28 @@ TEST(GrowthTarget, RisesFromTheStartToTheBudgetOverTheWindow) {
     twice.peak = 2.0;
     EXPECT_EQ(train::growth_target(reference, twice, 7750), 11500u);
     EXPECT_EQ(train::growth_target(reference, twice, 15000), 22000u);
+    // The peak limit stops the growth beyond the budget, never the growth to it.
+    twice.peak_limit = 16000;
+    EXPECT_EQ(train::peak_count(twice), 16000u);
+    EXPECT_EQ(train::growth_target(reference, twice, 7750), 8500u);
+    EXPECT_EQ(train::growth_target(reference, twice, 15000), 16000u);
+    twice.peak_limit = 5000;
+    EXPECT_EQ(train::peak_count(twice), 11000u);
+    EXPECT_EQ(train::growth_target(reference, twice, 15000), 11000u);
+}
+
+TEST(GrowthTarget, TheDefaultPeakIsThreeTimesASmallBudgetAndNoMoreThanALargeOne) {
+    train::BudgetSchedule b;
+    b.budget = 40000;
+    EXPECT_EQ(train::peak_count(b), 120000u);
+    b.budget = 80000;
+    EXPECT_EQ(train::peak_count(b), 240000u);
+    b.budget = 200000;
+    EXPECT_EQ(train::peak_count(b), 400000u);
+    b.budget = 400000;
+    EXPECT_EQ(train::peak_count(b), 400000u);
+    b.budget = 1000000;
+    EXPECT_EQ(train::peak_count(b), 1000000u);
 }
 
 TEST(BudgetStrategy, RefusesSettingsItCannotFollow) {

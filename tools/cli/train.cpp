@@ -1,5 +1,6 @@
 // vksplat train: trains a scene from photos with the 3DGS recipe on the GPU (jobs::train_scene).
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <unistd.h>
@@ -21,7 +22,7 @@ struct TrainArgs {
     double grad_threshold = train::DensifyRules{}.grad_threshold;
     size_t max_gaussians = 0;
     std::string strategy = "automatic";
-    double budget_peak = train::BudgetSchedule{}.peak;
+    std::optional<double> budget_peak;
     double keep_share = jobs::LeanRecipe{}.keep_share;
     uint64_t evaluate_every = 0;
     double resolution_scale = 1.0;
@@ -35,7 +36,11 @@ int run_train(const TrainArgs& args) {
     options.recipe.test_every = args.test_every;
     options.recipe.densify.max_gaussians = args.max_gaussians;
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
-    options.recipe.budget.peak = args.budget_peak;
+    // A multiple asked for is grown to, however many Gaussians that makes.
+    if (args.budget_peak) {
+        options.recipe.budget.peak = *args.budget_peak;
+        options.recipe.budget.peak_limit = std::numeric_limits<size_t>::max();
+    }
     options.recipe.lean.keep_share = args.keep_share;
     options.evaluate_every = args.evaluate_every;
     // One option for the window of whichever recipe runs; each has its own default.
@@ -147,8 +152,8 @@ void register_train(CLI::App& app, Action& action) {
         ->check(number_in(1e-6, 1.0));
     command->add_option("--budget-peak", args->budget_peak,
                         "budget recipe: grow to this multiple of --max-gaussians, then keep the budget's most "
-                        "important (1: grow to the budget only, better where a scene over-fits)")
-        ->capture_default_str()
+                        "important (1: grow to the budget only, better where a scene over-fits; default 3, but "
+                        "to no more than " + std::to_string(train::BudgetSchedule{}.peak_limit) + " Gaussians)")
         ->check(number_in(1.0, 100.0));
     command->add_option("--evaluate-every", args->evaluate_every,
                         "measure the test views every N iterations into metrics.json's history (0: at the end only)")
