@@ -173,20 +173,18 @@ void DifferentiableRenderer::record_forward(gpu::CommandStream& stream, const Tr
     stream.mark("blend");
 }
 
-void DifferentiableRenderer::record_backward_clears(gpu::CommandStream& stream, const TrainableScene& scene,
-                                                   bool clear_overflow_mark) {
-    const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
-    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * splat_grad_bytes());
-    stream.fill(status_, 0, 0, clear_overflow_mark ? VK_WHOLE_SIZE : sizeof(uint32_t));
-}
-
 void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const TrainableScene& scene,
-                                             VkDeviceAddress pixel_grad, VkDeviceAddress adam) {
+                                             VkDeviceAddress pixel_grad, bool clear_overflow_mark,
+                                             VkDeviceAddress adam) {
     if (!adam && !scene.grads)
         throw std::logic_error("DifferentiableRenderer::record_backward: no Adam settings and no gradient array");
     auto& f = frame_;
     choice_.scene_size(scene.layout.count);
     recorded_ = choice_.next();
+    const uint32_t grad_floats = scene.layout.count * kSplatGradStride;
+    stream.fill(splat_grads_, 0, 0, uint64_t(grad_floats) * splat_grad_bytes());
+    stream.fill(status_, 0, 0, clear_overflow_mark ? VK_WHOLE_SIZE : sizeof(uint32_t));
+    stream.barrier();
     const BlendBackwardPush backward{.camera = f.camera.address(),
                                      .ranges = f.ranges.address(),
                                      .tile_values = f.tile_values.address(),
@@ -278,9 +276,9 @@ void DifferentiableRenderer::backpropagate(const TrainableScene& scene, const Ca
         const auto params =
             render::make_camera_params(camera, settings, scene.layout.count, scene.sh_degree, false, entry_capacity());
         stream.begin();
+        record_forward(stream, scene, params);
         // Nothing is queued, so no overflow is pending; a frame that overflows steps nothing by Adam.
-        record_forward(stream, scene, params, [&] { record_backward_clears(stream, scene, true); });
-        record_backward(stream, scene, pixel_grad, adam);
+        record_backward(stream, scene, pixel_grad, true, adam);
         record_readback(stream);
         stream.barrier_before_host_read();
         stream.submit_and_wait();

@@ -99,16 +99,12 @@ public:
     // The gradients of every raw parameter from dL/d rgb per pixel (vec4, at `pixel_grad`): into
     // scene.grads, or, given a step's Adam settings (`adam`, shaders/train/adam_step.h), straight
     // into Adam's step of scene.params and its moments, so that they need no array of their own.
-    // Needs record_backward_clears before it, with a barrier between. The blend backward runs in
-    // blend_backward_choice().next()'s form.
+    // Zeroes the step status first; preprocess_backward sets its bits. With
+    // `clear_overflow_mark` it clears the overflow mark too (shaders/train/parameter_layout.h):
+    // for a step recorded again after an overflow, with no step queued before it. The blend
+    // backward runs in blend_backward_choice().next()'s form.
     void record_backward(gpu::CommandStream& stream, const TrainableScene& scene, VkDeviceAddress pixel_grad,
-                         VkDeviceAddress adam = 0);
-    // Zeroes what record_backward adds into: the per-splat sums and the step status, whose bits
-    // preprocess_backward sets. With `clear_overflow_mark` the overflow mark too
-    // (shaders/train/parameter_layout.h): for a step recorded again after an overflow, with no step
-    // queued before it. No forward pass reads either, so callers record it beside one (the
-    // blend): a barrier of its own cost a training step about as much as the fill.
-    void record_backward_clears(gpu::CommandStream& stream, const TrainableScene& scene, bool clear_overflow_mark);
+                         bool clear_overflow_mark, VkDeviceAddress adam = 0);
     // After the submission of a record_backward and record_readback into `slot`: its blend
     // backward's time, for the choice of form (none from a frame that overflowed its tile entries).
     void learn_timings(const gpu::CommandStream& stream, int slot = 0);

@@ -79,9 +79,8 @@ std::vector<std::array<double, 36>> estimate_fisher(const gpu::Context& context,
                                  .pixels = pixels,
                                  .seed = probe_seed(options.seed, uint64_t(view) * options.probes_per_view + probe)},
                                 gpu::groups_for(pixels));
-                renderer.record_backward_clears(stream, scene, true);
                 stream.barrier();
-                renderer.record_backward(stream, scene, pixel_grad.address());
+                renderer.record_backward(stream, scene, pixel_grad.address(), true);
                 // A frame that overflowed its tile entries sets the status: those probes add nothing,
                 // and the view runs again below with room.
                 stream.dispatch(accumulate,

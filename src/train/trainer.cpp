@@ -273,18 +273,14 @@ void Trainer::Impl::record(Slot& slot, bool again) {
     stream.update(adam_settings, &adam, sizeof(adam));
     // The loss is the first to read the photo: its upload runs beside the blend. At the start of
     // the step, the barrier after it held every pass back until the upload had crossed the bus.
-    // The backward's clears go there too, where they need no barrier of their own.
-    renderer.record_forward(stream, scene, params, [&] {
-        stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4);
-        renderer.record_backward_clears(stream, scene, again);
-    });
+    renderer.record_forward(stream, scene, params, [&] { stream.copy(slot.photo_upload, photo, uint64_t(pixels) * 4); });
     loss.record(stream,
                 {renderer.color_alpha().address(), photo.address(), pixel_grad.address(), uint32_t(camera.width),
                  uint32_t(camera.height), float(options.ssim_weight)},
                 slot.index);
     stream.barrier();
     stream.mark("loss");
-    renderer.record_backward(stream, scene, pixel_grad.address(), adam_settings.address());
+    renderer.record_backward(stream, scene, pixel_grad.address(), again, adam_settings.address());
     if (options.position_noise > 0) {
         stream.dispatch(noise,
                         {.params = scene.params.address(),
