@@ -44,6 +44,8 @@ int main(int argc, char** argv) {
     app.add_option("--max-screen-radius", recipe.densify.max_screen_radius,
                    "> 0: after the first opacity reset, also prune radii above it (pixels)");
     app.add_option("--opacity-reset-interval", recipe.opacity_reset_interval);
+    app.add_option("--densify-interval", recipe.densify_interval, "steps between densifications (the reference's 100)")
+        ->check(CLI::PositiveNumber);
     std::string strategy = "automatic", ranking = "mean";
     uint64_t evaluate_every = 0;
     app.add_option("--strategy", strategy, "automatic, reference, lean, budget or mcmc");
