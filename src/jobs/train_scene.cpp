@@ -347,6 +347,15 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         budget.settle = settle;
         // The peak fits in memory too.
         budget.peak = std::max(1.0, std::min(budget.peak, double(room) / double(budget.budget)));
+        const size_t peak = train::peak_count(budget);
+        std::string growth = "budget " + std::to_string(budget.budget) + ": growing to " + std::to_string(peak) + " Gaussians";
+        if (peak > budget.budget)
+            growth += ", then keeping the " + std::to_string(budget.budget) + " of most blend weight from step " +
+                      std::to_string(settle.at) + " on";
+        if (double(budget.budget) * budget.peak > double(budget.peak_limit))
+            growth += " (growth beyond the budget stops at " + std::to_string(budget.peak_limit) +
+                      " Gaussians; --budget-peak lifts the limit)";
+        notice(growth);
         strategy = std::make_unique<train::BudgetStrategy>(schedule, budget, settling_importance(context, data, options));
         budget_strategy = static_cast<train::BudgetStrategy*>(strategy.get());
     }
