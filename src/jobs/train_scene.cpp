@@ -126,7 +126,8 @@ std::string recipe_text(const TrainRecipe& r) {
     const auto& b = r.budget;
     return "budget: growth " + std::to_string(b.growth_exponent) + " to " + std::to_string(b.reach) + ", ranking " +
            std::to_string(int(b.ranking)) + ", gradient " + std::to_string(b.min_gradient) + ", prune " +
-           std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " to at most " + std::to_string(b.peak_limit) + " until " + std::to_string(b.densify_until) +
+           std::to_string(b.prune_ratio) + ", peak " + std::to_string(b.peak) + " to at most " +
+           std::to_string(b.peak_limit) + " until " + std::to_string(b.densify_until) +
            ", settling " + std::to_string(b.settle.rounds) + " x " + std::to_string(b.settle.spacing) +
            (b.settle.restart_decay ? " restarting the decay" : "") + (b.reset_opacity ? ", opacity resets" : "") +
            (b.prune_large ? ", large pruned" : "") +
