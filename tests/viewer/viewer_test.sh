@@ -108,10 +108,21 @@ expect_mean() {
     fail "$5: mean $m of $2 in $(basename "$1"), wanted $3 $4"
 }
 
+# screen_shows OUT REGION OP VALUE WHAT: screenshots into OUT until the region's mean brightness is
+# OP VALUE (at most 30 s), for pictures the title cannot announce or Xvfb may show late.
+screen_shows() {
+  for _ in $(seq 150); do
+    import -window "$window" "$1"
+    awk -v m="$(mean_of "$1" "$2")" -v v="$4" -v op="$3" 'BEGIN { exit !((op == ">") ? m > v : m < v) }' &&
+      return 0
+    sleep 0.2
+  done
+  fail "$5: mean $(mean_of "$1" "$2") of $2, wanted $3 $4"
+}
+
 if wait_title "ms \(.*camera 1/2 \(top\)"; then
-  import -window "$window" "$work/top.png"
   # The knot and the ground disc fill the middle; the corners are the black background.
-  expect_mean "$work/top.png" 120x120+100+60 ">" 0.15 "scene in the middle (top view)"
+  screen_shows "$work/top.png" 120x120+100+60 ">" 0.15 "scene in the middle (top view)"
   expect_mean "$work/top.png" 30x30+0+0 "<" 0.02 "background in the corner (top view)"
   expect_mean "$work/top.png" 30x30+290+210 "<" 0.02 "background in the corner (top view)"
 else
@@ -121,15 +132,7 @@ fi
 
 # H brings the HUD (started with --no-hud) into the top-left corner: the status line, then every
 # key below it, then nothing again. The title does not change, so the screen is polled.
-hud_shows() {  # REGION OP VALUE WHAT
-  for _ in $(seq 150); do
-    import -window "$window" "$work/hud.png"
-    awk -v m="$(mean_of "$work/hud.png" "$1")" -v v="$3" -v op="$2" 'BEGIN { exit !((op == ">") ? m > v : m < v) }' &&
-      return 0
-    sleep 0.2
-  done
-  fail "$4: mean $(mean_of "$work/hud.png" "$1") of $1, wanted $2 $3"
-}
+hud_shows() { screen_shows "$work/hud.png" "$@"; }  # REGION OP VALUE WHAT
 xdotool key --window "$window" h
 hud_shows 120x12+4+4 ">" 0.08 "H should show the HUD's status line"
 hud_shows 120x12+4+60 "<" 0.03 "the status line alone should be one line"
@@ -184,8 +187,7 @@ xdotool mousemove --window "$window" 160 120 mousedown 1 mousemove --window "$wi
 wait_title "orbit$" || fail "a drag should leave the dataset camera"
 xdotool key --window "$window" Tab
 wait_title " fly$" || fail "Tab should switch to fly mode"
-import -window "$window" "$work/after_drag.png"
-expect_mean "$work/after_drag.png" 320x240+0+0 ">" 0.03 "scene still in view after the drag"
+screen_shows "$work/after_drag.png" 320x240+0+0 ">" 0.03 "scene still in view after the drag"
 
 # V draws the dataset cameras' frustums into the scene (yellow splats), V again takes them away;
 # seen from further back, where both cameras are in view.
@@ -259,7 +261,7 @@ if [ -f "$shared/snowmiku/point_cloud.ply" ] && [ -f "$shared/snowmiku/cameras.j
   "$vksplat" view "$shared/snowmiku/point_cloud.ply" --size 330x247 --no-hud >"$work/view_snowmiku.log" 2>&1 &
   viewer_pid=$!
   if wait_title "camera 1/97"; then
-    import -window "$window" "$work/snowmiku.png"
+    screen_shows "$work/snowmiku.png" 330x247+0+0 ">" 0.02 "snowmiku's first frame should show the scene"
     convert "$shared/snowmiku/golden/00000.png" -resize 330x247! "$work/golden.png"
     convert "$work/golden.png" -flip "$work/golden_flipped.png"
     upright=$(compare -metric PSNR "$work/snowmiku.png" "$work/golden.png" null: 2>&1)
