@@ -11,7 +11,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <limits>
 #include <optional>
 
 #include "vksplat/error.hpp"
@@ -62,10 +61,9 @@ int main(int argc, char** argv) {
     app.add_option("--min-gradient", recipe.budget.min_gradient);
     app.add_option("--prune-ratio", recipe.budget.prune_ratio);
     app.add_option("--start-fraction", recipe.start_fraction);
-    auto* peak_option =
-        app.add_option("--peak", recipe.budget.peak, "grow to peak x budget, prune to the budget at --densify-until");
-    auto* peak_limit_option = app.add_option("--peak-limit", recipe.budget.peak_limit,
-                                             "grow to at most this many Gaussians (default: unlimited with --peak)");
+    std::optional<double> peak;
+    app.add_option("--peak", peak,
+                   "grow to peak x budget, prune to the budget at --densify-until (as train --budget-peak)");
     app.add_option("--others-final", recipe.rates.others_final,
                    "the rates but position's decay to this multiple of themselves by the end");
     app.add_option("--settle-rounds", recipe.budget.settle.rounds, "settle in this many rounds");
@@ -97,9 +95,7 @@ int main(int argc, char** argv) {
     app.add_flag("--pipeline-stats", pipeline_stats,
                  "print what the driver says of the training passes' pipelines (registers, shared memory, ...)");
     CLI11_PARSE(app, argc, argv);
-    // As `vksplat train --budget-peak`: a multiple asked for is grown to.
-    if (peak_option->count() && !peak_limit_option->count())
-        recipe.budget.peak_limit = std::numeric_limits<size_t>::max();
+    if (peak) recipe.budget.ask_peak(*peak);
     try {
         recipe.densify.max_gaussians = max_gaussians;
         if (densify_until) recipe.densify_until = recipe.budget.densify_until = recipe.lean.densify_until = *densify_until;

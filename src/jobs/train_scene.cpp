@@ -353,7 +353,9 @@ TrainResult train_scene(const gpu::Context& context, const TrainingData& data, c
         if (peak > budget.budget)
             growth += ", then keeping the " + std::to_string(budget.budget) + " of most blend weight from step " +
                       std::to_string(settle.at) + " on";
-        if (double(budget.budget) * budget.peak > double(budget.peak_limit))
+        train::BudgetSchedule unlimited = budget;
+        unlimited.ask_peak(budget.peak);
+        if (train::peak_count(unlimited) > peak)
             growth += " (growth beyond the budget stops at " + std::to_string(budget.peak_limit) +
                       " Gaussians; --budget-peak lifts the limit)";
         notice(growth);

@@ -1,6 +1,5 @@
 // vksplat train: trains a scene from photos with the 3DGS recipe on the GPU (jobs::train_scene).
 #include <cstdio>
-#include <limits>
 #include <memory>
 #include <optional>
 #include <unistd.h>
@@ -36,11 +35,7 @@ int run_train(const TrainArgs& args) {
     options.recipe.test_every = args.test_every;
     options.recipe.densify.max_gaussians = args.max_gaussians;
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
-    // A multiple asked for is grown to, however many Gaussians that makes.
-    if (args.budget_peak) {
-        options.recipe.budget.peak = *args.budget_peak;
-        options.recipe.budget.peak_limit = std::numeric_limits<size_t>::max();
-    }
+    if (args.budget_peak) options.recipe.budget.ask_peak(*args.budget_peak);
     options.recipe.lean.keep_share = args.keep_share;
     options.evaluate_every = args.evaluate_every;
     // One option for the window of whichever recipe runs; each has its own default.

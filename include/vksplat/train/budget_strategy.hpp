@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 #include "vksplat/scene/scene.hpp"
@@ -58,6 +59,11 @@ struct BudgetSchedule {
     //   400,000  31.13    31.17    30.98    31.21
     // and at 400,000 peak 1 trains in 44.3 s with 396 MB where peak 3 takes 59.1 s and 1,133 MB.
     size_t peak_limit = 400000;
+    // A multiple asked for (train --budget-peak) is grown to, however many Gaussians that makes.
+    void ask_peak(double multiple) {
+        peak = multiple;
+        peak_limit = std::numeric_limits<size_t>::max();
+    }
     // The settling from the peak to the budget (settle.at: jobs sets it to min(densify_until,
     // iterations), and settle.iterations to the run's length). Three rounds 1,000 steps apart,
     // each re-scoring the scene, and a restarted position decay.
