@@ -129,29 +129,19 @@ void CommandStream::submit_and_wait() {
     wait();
 }
 
-void CommandStream::submit() { submit_together({this}); }
-
-void CommandStream::submit_together(const std::vector<CommandStream*>& streams) {
-    if (streams.empty()) return;
-    const auto& d = streams.front()->context_.impl();
-    std::vector<VkCommandBuffer> buffers;
-    for (CommandStream* stream : streams) {
-        VKSPLAT_VK(d.vk.vkEndCommandBuffer(stream->command_buffer_));
-        buffers.push_back(stream->command_buffer_);
-    }
-    // The last one's fence signals when every command buffer of the submission has completed.
-    const VkFence fence = streams.back()->fence_;
+void CommandStream::submit() {
+    const auto& d = context_.impl();
+    VKSPLAT_VK(d.vk.vkEndCommandBuffer(command_buffer_));
     VkSubmitInfo info{VK_STRUCTURE_TYPE_SUBMIT_INFO};
-    info.commandBufferCount = static_cast<uint32_t>(buffers.size());
-    info.pCommandBuffers = buffers.data();
-    VKSPLAT_VK(d.vk.vkResetFences(d.device, 1, &fence));
-    VKSPLAT_VK(d.vk.vkQueueSubmit(d.queue, 1, &info, fence));
-    for (CommandStream* stream : streams) stream->waited_fence_ = fence;
+    info.commandBufferCount = 1;
+    info.pCommandBuffers = &command_buffer_;
+    VKSPLAT_VK(d.vk.vkResetFences(d.device, 1, &fence_));
+    VKSPLAT_VK(d.vk.vkQueueSubmit(d.queue, 1, &info, fence_));
 }
 
 void CommandStream::wait() {
     const auto& d = context_.impl();
-    VKSPLAT_VK(d.vk.vkWaitForFences(d.device, 1, &waited_fence_, VK_TRUE, UINT64_MAX));
+    VKSPLAT_VK(d.vk.vkWaitForFences(d.device, 1, &fence_, VK_TRUE, UINT64_MAX));
 
     times_.clear();
     if (!queries_ || labels_.empty()) return;

@@ -69,10 +69,6 @@ public:
     // submit_and_wait() in two halves; a stream is not begun again before its wait().
     void submit();
     void wait();
-    // Submits begun streams in one queue submission, in their order; each one's wait() then waits
-    // for all of them. A submission has a cost of its own on the device (on an H200 ~45 us between
-    // two, more than the whole of a small pass), which streams submitted together pay once.
-    static void submit_together(const std::vector<CommandStream*>& streams);
     // Stage times of the last submission (empty if the queue has no timestamps).
     std::vector<StageTime> stage_times() const;
 
@@ -89,7 +85,6 @@ private:
     VkCommandPool pool_ = VK_NULL_HANDLE;
     VkCommandBuffer command_buffer_ = VK_NULL_HANDLE;
     VkFence fence_ = VK_NULL_HANDLE;
-    VkFence waited_fence_ = VK_NULL_HANDLE;  // the fence of the submission this stream went in
     VkQueryPool queries_ = VK_NULL_HANDLE;
     uint32_t max_timestamps_ = 0;
     std::vector<std::string> labels_;

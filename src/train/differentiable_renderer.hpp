@@ -110,8 +110,8 @@ public:
     void learn_timings(const gpu::CommandStream& stream, int slot = 0);
     const BlendBackwardChoice& blend_backward_choice() const { return choice_; }
     // Host-visible readbacks, one per step that may be on the device at once (the Trainer queues
-    // a batch of steps behind the batch running).
-    static constexpr int kReadbackSlots = 8;
+    // a step behind the one running).
+    static constexpr int kReadbackSlots = 2;
     // Copies the frame counters and the step status to readback `slot` (after the submission:
     // entries_needed(slot), visible(slot), status(slot)).
     void record_readback(gpu::CommandStream& stream, int slot = 0);

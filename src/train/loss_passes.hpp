@@ -42,8 +42,8 @@ public:
     LossPasses& operator=(const LossPasses&) = delete;
 
     // Host-visible buffers the sums are copied to, one per step that may be on the device at once
-    // (the Trainer queues a batch of steps behind the batch running).
-    static constexpr int kReadbackSlots = 8;
+    // (the Trainer queues a step behind the one running).
+    static constexpr int kReadbackSlots = 2;
 
     // Records the loss and its gradient; grows its scratch buffers for the image size
     // first (so call it outside any recording that other frames still use). Copies the sums to

@@ -1,6 +1,7 @@
 #include "vksplat/train/trainer.hpp"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -28,12 +29,6 @@ namespace {
 
 // torch.optim.Adam's defaults but for epsilon, which the reference sets to 1e-15.
 constexpr float kBeta1 = 0.9f, kBeta2 = 0.999f, kEpsilon = 1e-15f;
-
-// Steps recorded ahead and submitted together (Trainer::Impl::slots says how); two batches' worth
-// of readbacks (LossPasses, DifferentiableRenderer) are needed.
-constexpr int kStepsPerSubmission = 4;
-static_assert(2 * kStepsPerSubmission <= LossPasses::kReadbackSlots &&
-              2 * kStepsPerSubmission <= DifferentiableRenderer::kReadbackSlots);
 
 uint32_t pack_rgba8(float r, float g, float b, uint8_t alpha) {
     const auto byte = [](float v) {
@@ -95,17 +90,14 @@ struct Trainer::Impl {
     gpu::Buffer adam_settings;
     gpu::Kernel<shader::train::PositionNoiseKernel> noise;
     DensifyPasses densify;
-    // Steps are recorded kStepsPerSubmission at a time into slots while the batch before them
-    // runs, and queued behind it in one submission, so that the GPU goes from one step to the
-    // next without waiting for the host (which took ~0.1 ms a step on an H200) and pays a
-    // submission's own cost once a batch. Step N uses slots[N % slots.size()]. The queue runs one
-    // step at a time (each begins with a barrier after everything before it), so the device
-    // buffers below and the renderer's are single; only the readbacks are per slot. Steps queued
-    // behind one that overflowed its tile entries change nothing (the overflow mark) and are run
-    // again after it.
-    std::vector<std::unique_ptr<Slot>> slots;
-    std::vector<Slot*> recording;  // steps recorded and not yet submitted
-    std::vector<Slot*> in_flight;  // the batch submitted last
+    // Step N is recorded into slots[N % 2] while step N - 1 runs from the other, and queued behind
+    // it, so that the GPU goes from one step to the next without waiting for the host (which took
+    // ~0.1 ms a step on an H200). The queue runs one step at a time (each begins with a barrier
+    // after everything before it), so the device buffers below and the renderer's are single; only
+    // the readbacks are per slot. A step queued behind one that overflowed its tile entries
+    // changes nothing (the overflow mark) and is run again after it.
+    std::array<Slot, 2> slots;
+    Slot* in_flight = nullptr;  // the step submitted last
     std::vector<StepResult> finished;  // results not yet taken (take_results)
     gpu::Buffer photo, pixel_grad;
     uint32_t pixel_capacity = 0;
@@ -125,15 +117,14 @@ struct Trainer::Impl {
           adam_settings(c, sizeof(shader::train::AdamSettings), gpu::MemoryKind::device, "Adam settings"),
           noise(c),
           densify(c),
+          slots{Slot(c, 0), Slot(c, 1)},
           sh_degree(o.sh_degree),
-          position_decay{0, o.rates.position_decay_steps} {
-        for (int i = 0; i < 2 * kStepsPerSubmission; ++i) slots.push_back(std::make_unique<Slot>(c, i));
-    }
+          position_decay{0, o.rates.position_decay_steps} {}
 
     void ensure_pixels(uint32_t pixels) {
         if (pixels <= pixel_capacity) return;
-        for (auto& slot : slots)
-            gpu::replace(slot->photo_upload, context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
+        for (Slot& slot : slots)
+            gpu::replace(slot.photo_upload, context, uint64_t(pixels) * 4, gpu::MemoryKind::upload, "photo (staging)");
         gpu::replace(photo, context, uint64_t(pixels) * 4, gpu::MemoryKind::device, "photo");
         gpu::replace(pixel_grad, context, uint64_t(pixels) * 16, gpu::MemoryKind::device, "pixel gradients");
         pixel_capacity = pixels;
@@ -180,10 +171,8 @@ struct Trainer::Impl {
     void submit(const Camera& camera, const Photo& target);
     // `again`: the slot's step is recorded again after an overflow, with nothing queued before it.
     void record(Slot& slot, bool again);
-    // Submits the steps recorded, then finishes the batch before them.
-    void submit_recorded();
-    // Waits for `batch` and keeps its results; `queued` is the batch submitted behind it, if any.
-    void finish_batch(const std::vector<Slot*>& batch, std::vector<Slot*>* queued);
+    // Waits for `slot`'s step and keeps its result; `queued` is the step submitted behind it, if any.
+    void finish_step(Slot& slot, Slot* queued);
     // Lays the scene out by `plan`. The renderer's frame is idle between steps and about as large
     // as one of the arrays the plan gathers, so it makes room for it (the next step allocates it
     // again): changing the scene then holds no more than a step does.
@@ -191,7 +180,7 @@ struct Trainer::Impl {
         renderer.release_frame();
         densify.apply(scene, plan);
     }
-    // Densification and relocation alike: waits for the steps in flight, reads back what the host
+    // Densification and relocation alike: waits for the step in flight, reads back what the host
     // plans from, plans (`planner`), and lays the scene out by the plan (`scene_plan` of what was
     // planned; null where it changes nothing), each phase timed into scene_change_times.
     template <class Planner, class ScenePlan>
@@ -214,21 +203,20 @@ struct Trainer::Impl {
     }
     void finish() {
         check_scene();
-        submit_recorded();
-        const std::vector<Slot*> batch = std::move(in_flight);
-        in_flight.clear();
-        finish_batch(batch, nullptr);
+        if (!in_flight) return;
+        Slot& slot = *in_flight;
+        in_flight = nullptr;
+        finish_step(slot, nullptr);
     }
     StepResult result_of(const Slot& slot, uint32_t attempts);
     void load_checkpoint(const std::filesystem::path& path);
 };
 
 Trainer::Impl::~Impl() {
-    // The steps' buffers must outlive their commands; what they did no longer matters (the steps
-    // recorded and not submitted never run).
-    if (in_flight.empty()) return;
+    // The step's buffers must outlive its commands; what it did no longer matters.
+    if (!in_flight) return;
     try {
-        in_flight.back()->stream.wait();
+        in_flight->stream.wait();
     } catch (...) {  // the device is lost: nothing runs any more
     }
 }
@@ -242,10 +230,10 @@ void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
                          "is " + std::to_string(target.width) + "x" + std::to_string(target.height) +
                              " but the camera is " + std::to_string(camera.width) + "x" +
                              std::to_string(camera.height));
-    // Steps in flight are of the same scene (whatever changes it finishes them first); of the
+    // A step in flight is of the same scene (whatever changes it finishes the step first); of the
     // same image size too, no buffer below grows, and the loss's sums keep their layout.
-    const Slot* last = !recording.empty() ? recording.back() : !in_flight.empty() ? in_flight.back() : nullptr;
-    if (last && (last->camera.width != camera.width || last->camera.height != camera.height)) finish();
+    if (in_flight && (in_flight->camera.width != camera.width || in_flight->camera.height != camera.height))
+        finish();
     const auto [pixels, tiles] = render::image_extent(camera);
     const uint64_t held = context.held_device_bytes();
     Clock::time_point since = Clock::now();
@@ -253,7 +241,7 @@ void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
     ensure_pixels(pixels);
     // Counted where it allocated: a step that finds its frame in place spends a microsecond here.
     if (context.held_device_bytes() != held) lap(scene_change_times.frame_allocation, since);
-    Slot& slot = *slots[iteration % slots.size()];
+    Slot& slot = slots[iteration % 2];
     std::memcpy(slot.photo_upload.mapped(), target.rgba.data(), uint64_t(pixels) * 4);
     slot.camera = camera;
     slot.step = iteration;
@@ -261,20 +249,11 @@ void Trainer::Impl::submit(const Camera& camera, const Photo& target) {
     slot.position_rate = position_rate();
     slot.other_rates_factor = other_rates_factor();
     record(slot, false);
-    recording.push_back(&slot);
+    slot.stream.submit();
+    Slot* previous = in_flight;
+    in_flight = &slot;
     ++iteration;
-    if (recording.size() == size_t(kStepsPerSubmission)) submit_recorded();
-}
-
-void Trainer::Impl::submit_recorded() {
-    if (recording.empty()) return;
-    std::vector<gpu::CommandStream*> streams;
-    for (Slot* slot : recording) streams.push_back(&slot->stream);
-    gpu::CommandStream::submit_together(streams);
-    const std::vector<Slot*> previous = std::move(in_flight);
-    in_flight = std::move(recording);
-    recording.clear();
-    finish_batch(previous, &in_flight);
+    if (previous) finish_step(*previous, &slot);
 }
 
 void Trainer::Impl::record(Slot& slot, bool again) {
@@ -318,40 +297,25 @@ void Trainer::Impl::record(Slot& slot, bool again) {
 }
 
 // A step that overflowed its tile entries (Adam and the passes after it did nothing) runs again,
-// synchronously, with grown ones, once the steps queued behind it, which its overflow mark kept
-// from changing anything, have finished; so do the rest of its batch, one at a time, and then the
-// queued batch is recorded and queued again.
-void Trainer::Impl::finish_batch(const std::vector<Slot*>& batch, std::vector<Slot*>* queued) {
-    bool replaying = false;  // a step before overflowed: this one changed nothing
-    for (Slot* step : batch) {
-        Slot& slot = *step;
-        if (replaying) {
-            record(slot, true);
-            slot.stream.submit_and_wait();
-        } else {
-            slot.stream.wait();
-        }
-        uint32_t attempts = 1;
-        for (;; ++attempts) {
-            renderer.learn_timings(slot.stream, slot.index);
-            const uint32_t needed = renderer.entries_needed(slot.index);  // checked even when the frame fits
-            if ((renderer.status(slot.index) & kStepOverflowed) == 0) break;
-            render::check_frame_attempts(attempts, "view '" + slot.camera.name + "'");
-            if (queued && !queued->empty()) queued->back()->stream.wait();
-            renderer.grow_entries(needed);
-            record(slot, true);
-            slot.stream.submit_and_wait();
-            replaying = true;
-        }
-        finished.push_back(result_of(slot, attempts));
+// synchronously, with grown ones, after the step queued behind it, which its overflow mark kept
+// from changing anything, has finished; then the queued step is recorded and queued again.
+void Trainer::Impl::finish_step(Slot& slot, Slot* queued) {
+    slot.stream.wait();
+    uint32_t attempts = 1;
+    for (;; ++attempts) {
+        renderer.learn_timings(slot.stream, slot.index);
+        const uint32_t needed = renderer.entries_needed(slot.index);  // checked even when the frame fits
+        if ((renderer.status(slot.index) & kStepOverflowed) == 0) break;
+        render::check_frame_attempts(attempts, "view '" + slot.camera.name + "'");
+        if (queued) queued->stream.wait();
+        renderer.grow_entries(needed);
+        record(slot, true);
+        slot.stream.submit_and_wait();
     }
-    if (replaying && queued && !queued->empty()) {
-        std::vector<gpu::CommandStream*> streams;
-        for (Slot* slot : *queued) {
-            record(*slot, false);
-            streams.push_back(&slot->stream);
-        }
-        gpu::CommandStream::submit_together(streams);
+    finished.push_back(result_of(slot, attempts));
+    if (attempts > 1 && queued) {
+        record(*queued, false);
+        queued->stream.submit();
     }
 }
 

@@ -59,8 +59,8 @@ LoopResult run_training_loop(Trainer& trainer, Strategy& strategy, const std::ve
     auto last_report = start;
     double loss_sum = 0, mse_sum = 0;
     uint64_t since_report = 0;
-    // Steps are submitted without waiting (Trainer::submit): their results arrive a batch or two
-    // late, or when the strategy, a snapshot or a checkpoint waits for the steps in flight.
+    // Steps are submitted without waiting (Trainer::submit): their results arrive one step late, or
+    // when the strategy, a snapshot or a checkpoint waits for the step in flight.
     const auto take_results = [&] {
         for (const StepResult& step : trainer.take_results()) {
             step_times.push_back(step.gpu_milliseconds);

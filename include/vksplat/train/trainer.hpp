@@ -3,11 +3,11 @@
 // 3DGS trainer's loss and optimiser (Kerbl et al. 2023, gaussian-splatting train.py):
 //   loss = (1 - lambda) L1 + lambda (1 - SSIM), lambda = 0.2, on the rendered picture against the photo;
 //   Adam over positions, log-scales, quaternions, opacity logits and SH, each group at its own rate.
-// A step is one command buffer: forward frame, loss, backward passes, Adam. submit() prepares a
-// step (copies its photo, records its commands) while the steps before it run on the GPU; a few
-// steps go to the queue together, behind the batch running, and only then does the host wait for
-// that batch: the GPU goes from step to step without waiting for the host. The queue runs one
-// step at a time; a step's result arrives a batch or two later, or by finish().
+// A step is one submission: forward frame, loss, backward passes, Adam. submit() prepares a step
+// (copies its photo, records its commands) while the step before it runs on the GPU, queues it
+// behind that one and only then waits for that one: the GPU goes from step to step without waiting
+// for the host. The queue runs one step at a time; a step's result arrives when the next is
+// submitted, or by finish().
 //
 //   gpu::Context context;
 //   train::Trainer trainer(context, cloud, options);
@@ -158,7 +158,7 @@ struct DensifyReport {
 };
 
 // Host wall time spent changing the scene (densify, relocate, remove), in seconds summed over the
-// trainer's life: waiting for the steps in flight, reading the device's inputs back, planning on the
+// trainer's life: waiting for the step in flight, reading the device's inputs back, planning on the
 // host, laying the scene out anew on the device; and the frame's allocation by the steps after
 // (a scene change frees the renderer's frame to make room; the first step's allocation included).
 struct SceneChangeTimes {
@@ -201,16 +201,14 @@ public:
     // its result is returned, not kept for take_results().
     StepResult step(const Camera& camera, const Photo& photo);
     // The same iteration without waiting for it: records it (the photo is copied, so the caller
-    // may drop it). Once a few steps are recorded they are submitted behind the batch in flight,
-    // whose steps are then waited for and their results kept (steps that overflowed their tile
-    // entries run again first, and those queued behind them after them). It runs with the SH
-    // degree and the position rate of the moment of this call. A step of another image size than
-    // the steps pending waits for them first (the buffers may grow).
+    // may drop it), submits it behind the step in flight, then waits for that one and keeps its
+    // result (one that overflowed its tile entries runs again first, and this one after it).
+    // It runs with the SH degree and the position rate of the moment of this call. A step of
+    // another image size than the one in flight waits for that one first (the buffers may grow).
     void submit(const Camera& camera, const Photo& photo);
-    // Submits the steps recorded and waits for every step, keeping their results. Every call
-    // below that reads or changes the scene on the device does so first (densify, relocate,
-    // remove, reset_opacity, cloud, save_checkpoint); the destructor waits for the steps in
-    // flight, dropping their results and the steps not submitted.
+    // Waits for the step in flight, if any, keeping its result. Every call below that reads or
+    // changes the scene on the device does so first (densify, relocate, remove, reset_opacity,
+    // cloud, save_checkpoint), as does the destructor (dropping the result).
     void finish();
     // The results of the steps submitted and finished since the last call, in their order.
     std::vector<StepResult> take_results();
@@ -248,7 +246,7 @@ public:
     size_t size() const;
     // The current parameters (read back from the device).
     GaussianCloud cloud() const;
-    // Waits for the steps in flight and frees what only a step uses (the frame, the per-splat
+    // Waits for the step in flight and frees what only a step uses (the frame, the per-splat
     // sums), which the next step allocates again: for a caller that renders with a renderer of its
     // own between steps (a settling's scoring, an evaluation), so that the two frames are not held
     // at once. The scene, Adam's moments and the loss's buffers stay.

@@ -5,7 +5,7 @@
 // view, compares it with its photo, back-propagates and steps Adam (Trainer::submit: the host
 // prepares each step while the one before runs); between steps the loop checkpoints, stops when
 // asked (Ctrl-C) or when steps keep being skipped (check_skipped_steps), and reports progress,
-// counting each step's result as it arrives (a few steps late).
+// counting each step's result as it arrives (one step late).
 #include <atomic>
 #include <cstdint>
 #include <filesystem>
