@@ -20,13 +20,19 @@ AdamState adam_load(AdamSettings s, Floats params, uint at) {
     return AdamState(params.v[at], s.first_moment.v[at], s.second_moment.v[at]);
 }
 
-void adam_store(AdamSettings s, Floats params, uint at, AdamState state, float g, float learning_rate) {
+// One float's step from its state and gradient.
+AdamState adam_step(AdamSettings s, AdamState state, float g, float learning_rate) {
     const float m = s.beta1 * state.m + (1.0 - s.beta1) * g;
     const float v = s.beta2 * state.v + (1.0 - s.beta2) * g * g;
-    s.first_moment.v[at] = m;
-    s.second_moment.v[at] = v;
     const float step = (m / s.bias_correction1) / (sqrt(v / s.bias_correction2) + s.epsilon);
-    params.v[at] = state.param - learning_rate * step;
+    return AdamState(state.param - learning_rate * step, m, v);
+}
+
+void adam_store(AdamSettings s, Floats params, uint at, AdamState state, float g, float learning_rate) {
+    const AdamState next = adam_step(s, state, g, learning_rate);
+    s.first_moment.v[at] = next.m;
+    s.second_moment.v[at] = next.v;
+    params.v[at] = next.param;
 }
 
 #endif

@@ -223,7 +223,7 @@ void DifferentiableRenderer::record_backward(gpu::CommandStream& stream, const T
                      .status = status_.address(),
                      .sh_steps = sh_steps,
                      .adam = adam},
-                    gpu::groups_for(uint32_t((sh_floats + 3) / 4)));
+                    gpu::groups_for(uint32_t((sh_floats + 3) / 4 + 1)));  // chunks of 4, the block unaligned
     stream.barrier();
     stream.mark(adam ? "SH backward + Adam" : "SH backward");
 }
