@@ -6,11 +6,12 @@
 // Bands above the frame's degree get zero gradients (their moments decay, as torch's dense Adam
 // does); a Gaussian whose gradient was not finite does not step.
 // A thread takes four consecutive floats ([Gaussian][coefficient][rgb]) as one 16-byte load of
-// each array where they lie in one aligned vec4 (all but the block's two ends: it starts at
-// 11 N floats), so the parameters and moments move in whole cache lines with a quarter of the
-// memory instructions (bonsai at 400,000 Gaussians on an H200: 0.155 ms a step, 0.183 with a
-// 4-byte load per float); it loads all of their states before it stores any (adam.glsl says
-// why). A thread per coefficient, three floats apart, was slower still (0.278 ms).
+// each array where they lie in one aligned vec4 (every gpu::Buffer is an allocation of its own,
+// so its start is aligned; all but the block's two ends, since the block starts at 11 N floats),
+// so the parameters and moments move in whole cache lines with a quarter of the memory
+// instructions (bonsai at 400,000 Gaussians on an H200: 0.155 ms a step, 0.183 with a 4-byte
+// load per float); it loads all of their states before it stores any (adam.glsl says why). A
+// thread per coefficient, three floats apart, was slower still (0.278 ms).
 #extension GL_GOOGLE_include_directive : require
 #include "shaders/train/differentiable_renderer.h"
 layout(push_constant) uniform Push { ShBackwardPush pc; };

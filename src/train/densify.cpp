@@ -83,7 +83,7 @@ DensifyPlan plan_densify(const DensifyInputs& inputs, const DensifyRules& rules,
                 rank[i] = rules.ranking == DensifyRanking::mean_gradient ? grad[i] : sum(i, 0);
             // The order is total (ties by index), so the `room` best are one set, whichever way
             // they are found: nth_element finds them in linear time, and they are sorted by index
-            // below (planning took 0.35 s of a bonsai 400k run on an H200; 0.46 s with
+            // below (planning took 0.36-0.41 s of a bonsai 400k run on an H200; 0.47-0.51 s with
             // partial_sort, which also ordered them by rank).
             std::nth_element(candidates.begin(), candidates.begin() + long(room), candidates.end(),
                              [&](uint32_t a, uint32_t b) { return rank[a] > rank[b] || (rank[a] == rank[b] && a < b); });
