@@ -306,7 +306,11 @@ private:
         if (action == GLFW_PRESS) {
             touring_ = false;
             dragging_ = button == GLFW_MOUSE_BUTTON_LEFT && !(mods & GLFW_MOD_SHIFT) ? Drag::rotate : Drag::pan;
-            glfwGetCursorPos(window_.window(), &cursor_x_, &cursor_y_);
+            // A drag starts where the cursor was when the button went down: the last motion
+            // event before this one. Asking the window system (glfwGetCursorPos) gives where the
+            // cursor is now, which, while a slow frame leaves events queued, may already be where
+            // the drag went, and the drag would then turn the view by less than it moved.
+            if (!cursor_seen_) glfwGetCursorPos(window_.window(), &cursor_x_, &cursor_y_);
         } else {
             dragging_ = Drag::none;
         }
@@ -316,6 +320,7 @@ private:
         const double dx = x - cursor_x_, dy = y - cursor_y_;
         cursor_x_ = x;
         cursor_y_ = y;
+        cursor_seen_ = true;
         if (dragging_ == Drag::none) return;
         if (dragging_ == Drag::rotate)
             controls_.rotate(dx, dy);
@@ -490,6 +495,7 @@ private:
     bool dirty_ = true;
     Drag dragging_ = Drag::none;
     double cursor_x_ = 0, cursor_y_ = 0;
+    bool cursor_seen_ = false;  // a motion event has set cursor_x_, cursor_y_
 };
 
 }  // namespace
