@@ -20,6 +20,7 @@ struct TrainArgs {
     std::optional<uint64_t> densify_until;
     double grad_threshold = train::DensifyRules{}.grad_threshold;
     size_t max_gaussians = 0;
+    size_t random_points = jobs::TrainRecipe{}.random_points;
     std::string strategy = "automatic";
     std::optional<double> budget_peak;
     double keep_share = jobs::LeanRecipe{}.keep_share;
@@ -34,6 +35,7 @@ int run_train(const TrainArgs& args) {
     options.recipe.iterations = args.iterations;
     options.recipe.test_every = args.test_every;
     options.recipe.densify.max_gaussians = args.max_gaussians;
+    options.recipe.random_points = args.random_points;
     options.recipe.strategy = jobs::parse_densify_strategy(args.strategy);
     if (args.budget_peak) options.recipe.budget.ask_peak(*args.budget_peak);
     options.recipe.lean.keep_share = args.keep_share;
@@ -153,6 +155,11 @@ void register_train(CLI::App& app, Action& action) {
     command->add_option("--evaluate-every", args->evaluate_every,
                         "measure the test views every N iterations into metrics.json's history (0: at the end only)")
         ->check(count_in(0));
+    command->add_option("--random-points", args->random_points,
+                        "NeRF-synthetic and INRIA folders, which have no SfM points: start from this many random "
+                        "points (in the scene's box, or in what the cameras see together)")
+        ->capture_default_str()
+        ->check(count_in(1));
     command->add_option("--resolution-scale", args->resolution_scale, "train at this fraction of the photos' size")
         ->check(number_in(0.01, 1.0));
     command->add_option("--densify-until", args->densify_until,
