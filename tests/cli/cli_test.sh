@@ -464,12 +464,13 @@ grep -q '"strategy": "budget"' "$work/trained_budget/metrics.json" && [ -f "$wor
   passed=$((passed + 1)) || { failed=$((failed + 1)); echo "FAILED: budget run's metrics.json or report.html"; }
 # Growth beyond the budget stops at 400,000 Gaussians unless --budget-peak asks for a multiple.
 expect train-budget-peak-limit 0 "budget 200000: growing to 400000 Gaussians, then keeping the 200000 of most blend weight from step 1 on (growth beyond the budget stops at 400000 Gaussians; --budget-peak lifts the limit)" -- \
-  "$vksplat" train "$work/train_data" -o "$work/trained_limit" --iters 1 --max-gaussians 200000 --white-background --quiet
+  "$vksplat" train "$work/train_data" -o "$work/trained_limit" --iters 1 --max-gaussians 200000 --random-points 2000 \
+  --white-background --quiet
 expect train-budget-peak-asked 0 "budget 200000: growing to 600000 Gaussians, then keeping" -- \
-  "$vksplat" train "$work/train_data" -o "$work/trained_peak3" --iters 1 --max-gaussians 200000 --budget-peak 3 \
+  "$vksplat" train "$work/train_data" -o "$work/trained_peak3" --iters 1 --max-gaussians 200000 --budget-peak 3 --random-points 2000 \
   --white-background --quiet
 expect train-budget-beyond-memory 0 "--max-gaussians 100000000: the memory budget holds about" -- "$vksplat" train \
-  "$work/train_data" -o "$work/trained_huge" --iters 2 --max-gaussians 100000000 --memory-budget 400 --quiet
+  "$work/train_data" -o "$work/trained_huge" --iters 2 --max-gaussians 100000000 --memory-budget 400 --random-points 2000 --quiet
 expect train-profile 0 "GPU time per step by pass (medians):  preprocess" -- "$vksplat" train "$work/train_data" \
   -o "$work/trained_profile" --iters 5 --random-points 2000 --white-background --quiet --profile
 grep -q '"gpu_ms_per_stage"' "$work/trained_profile/metrics.json" && passed=$((passed + 1)) ||
