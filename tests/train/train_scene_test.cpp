@@ -28,16 +28,18 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A ring of views at 64x48 (focal 44 pixels): small, since on lavapipe a training step's time
-// goes mostly to the per-pixel passes, and large enough for growth to pay.
+// A ring of views at 64x48: small, since on lavapipe a training step's time goes mostly to the
+// per-pixel passes, and large enough for growth to pay.
 constexpr int kWidth = 64, kHeight = 48;
 
+// The focal length is 0.6875 of the width (55 pixels at 80 wide): one field of view at any size.
 std::vector<Camera> ring_of_views(int count, int width, int height) {
+    const double focal = 0.6875 * width;
     std::vector<Camera> cameras;
     for (int i = 0; i < count; ++i) {
         const double angle = 2.0 * M_PI * i / count;
         Camera camera = Camera::look_at({4.0 * std::sin(angle), 0.8 * std::cos(2.0 * angle), -4.0 * std::cos(angle)},
-                                        {0.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, width, height, 44.0, 44.0);
+                                        {0.0, 0.0, 0.0}, {0.0, -1.0, 0.0}, width, height, focal, focal);
         char name[32];
         std::snprintf(name, sizeof(name), "view_%02d.png", i);
         camera.name = name;
