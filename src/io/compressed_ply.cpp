@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "io/byte_order.hpp"
+#include "io/compressed_ply_layout.hpp"
 #include "io/formats_detail.hpp"
 #include "io/ply_header.hpp"
 #include "vksplat/io/formats.hpp"
@@ -18,13 +19,7 @@ namespace {
 namespace fs = std::filesystem;
 using ply::ScalarType;
 
-constexpr uint64_t kChunkSize = 256;
-
-constexpr const char* kChunkFields[] = {"min_x",       "min_y",       "min_z",       "max_x",
-                                        "max_y",       "max_z",       "min_scale_x", "min_scale_y",
-                                        "min_scale_z", "max_scale_x", "max_scale_y", "max_scale_z"};
-constexpr const char* kChunkColourFields[] = {"min_r", "min_g", "min_b", "max_r", "max_g", "max_b"};
-constexpr const char* kVertexFields[] = {"packed_position", "packed_rotation", "packed_scale", "packed_color"};
+using namespace compressed_ply;
 
 double load_as_double(const char* bytes, ScalarType type, bool swap) {
     using detail::load_scalar;
@@ -173,7 +168,7 @@ GaussianCloud read_compressed_ply(const fs::path& path, std::vector<std::string>
                                         " vertices need " + std::to_string(chunks_needed) + " (one per 256)");
 
     std::vector<Table::Column> range;
-    for (const char* name : kChunkFields) range.push_back(chunks.require(name));
+    for (const char* name : kChunkGeometryFields) range.push_back(chunks.require(name));
     size_t colour_fields = 0;
     for (const char* name : kChunkColourFields) colour_fields += chunks.find(name) ? 1 : 0;
     if (colour_fields != 0 && colour_fields != std::size(kChunkColourFields))

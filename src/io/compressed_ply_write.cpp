@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "io/compressed_ply_layout.hpp"
 #include "io/formats_detail.hpp"
 #include "io/morton_order.hpp"
 #include "vksplat/io/formats.hpp"
@@ -12,12 +13,7 @@
 namespace vksplat::io {
 namespace {
 
-constexpr size_t kChunkSize = 256;
-constexpr const char* kChunkFields[] = {"min_x",       "min_y",       "min_z",       "max_x",       "max_y",
-                                        "max_z",       "min_scale_x", "min_scale_y", "min_scale_z", "max_scale_x",
-                                        "max_scale_y", "max_scale_z", "min_r",       "min_g",       "min_b",
-                                        "max_r",       "max_g",       "max_b"};
-constexpr const char* kVertexFields[] = {"packed_position", "packed_rotation", "packed_scale", "packed_color"};
+using namespace compressed_ply;
 // splat-transform clamps the log-scale ranges here: some trained scenes hold infinite scales.
 constexpr float kLargestLogScale = 20.0f;
 // The SH bytes span [-4, 4].
@@ -70,7 +66,8 @@ uint8_t sh_byte(double value) {
 std::string header_text(size_t count, size_t chunks, size_t sh_rest) {
     std::string text = "ply\nformat binary_little_endian 1.0\ncomment written by vksplat\nelement chunk " +
                        std::to_string(chunks) + "\n";
-    for (const char* name : kChunkFields) text += std::string("property float ") + name + "\n";
+    for (const char* name : kChunkGeometryFields) text += std::string("property float ") + name + "\n";
+    for (const char* name : kChunkColourFields) text += std::string("property float ") + name + "\n";
     text += "element vertex " + std::to_string(count) + "\n";
     for (const char* name : kVertexFields) text += std::string("property uint ") + name + "\n";
     if (sh_rest) {
@@ -99,7 +96,7 @@ void write_compressed_ply(const GaussianCloud& cloud, const std::filesystem::pat
     };
 
     std::string chunk_rows, vertex_rows, sh_rows;
-    chunk_rows.reserve(chunks * std::size(kChunkFields) * 4);
+    chunk_rows.reserve(chunks * (std::size(kChunkGeometryFields) + std::size(kChunkColourFields)) * 4);
     vertex_rows.reserve(n * 16);
     sh_rows.reserve(n * rest_per_channel * 3);
     for (size_t c = 0; c < chunks; ++c) {
