@@ -6,16 +6,13 @@
 #include <cstdio>
 #include <limits>
 
+#include "jobs/log_line.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/jobs/prune_scene.hpp"
 #include "vksplat/prune/selection.hpp"
 
 namespace vksplat::jobs {
 namespace {
-
-void say(const Log& log, const std::string& line) {
-    if (log) log(line);
-}
 
 std::string format(const char* pattern, auto... values) {
     char text[256];

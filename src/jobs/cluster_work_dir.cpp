@@ -6,6 +6,7 @@
 #include <map>
 #include <regex>
 
+#include "jobs/log_line.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/formats.hpp"
 #include "vksplat/io/image.hpp"
@@ -17,10 +18,6 @@ namespace vksplat::jobs {
 namespace {
 
 namespace fs = std::filesystem;
-
-void say(const Log& log, const std::string& line) {
-    if (log) log(line);
-}
 
 std::string view_stem(size_t view) {
     char name[32];

@@ -19,6 +19,7 @@
 #include <unistd.h>
 
 #include "vksplat/error.hpp"
+#include "report/report_test_helpers.hpp"
 
 namespace vksplat::report {
 namespace {
@@ -142,12 +143,6 @@ XmlCheck check_xml(const std::string& s) {
     if (!stack.empty()) return fail("unclosed <" + stack.back() + ">", s.size());
     if (roots != 1) return fail("no root element", 0);
     return r;
-}
-
-size_t count(const std::string& haystack, const std::string& needle) {
-    size_t n = 0;
-    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + 1)) ++n;
-    return n;
 }
 
 // The (cx, cy) of every circle marker, in document order.

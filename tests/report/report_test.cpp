@@ -23,17 +23,12 @@
 #include "vksplat/report/chart.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
 #include "vksplat/io/image.hpp"
+#include "report/report_test_helpers.hpp"
 
 namespace vksplat::report {
 namespace {
 
 namespace fs = std::filesystem;
-
-size_t count(const std::string& haystack, const std::string& needle) {
-    size_t n = 0;
-    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + 1)) ++n;
-    return n;
-}
 
 std::string read_text(const fs::path& path) {
     std::ifstream in(path, std::ios::binary);

@@ -2,14 +2,11 @@
 
 #include <vector>
 
+#include "vk_result_check.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::viewer {
 namespace {
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
-}
 
 int type_rank(VkPhysicalDeviceType type) {
     switch (type) {

@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "vk_result_check.hpp"
 #include "vksplat/error.hpp"
 
 namespace vksplat::viewer {
@@ -12,10 +13,6 @@ namespace {
 
 constexpr double kFontScale = 0.4;
 constexpr int kLineHeight = 14, kMargin = 4;
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
-}
 
 }  // namespace
 

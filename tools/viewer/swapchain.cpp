@@ -2,15 +2,12 @@
 
 #include <algorithm>
 
+#include "vk_result_check.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/render/render_target.hpp"
 
 namespace vksplat::viewer {
 namespace {
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
-}
 
 // An 8-bit format vksplat writes; UNORM first, although _SRGB gets the same bytes (the colours are
 // display-encoded already, see render/render_target.hpp).

@@ -19,6 +19,7 @@
 #include "hud_overlay.hpp"
 #include "swapchain.hpp"
 #include "vksplat/camera/camera_controls.hpp"
+#include "vk_result_check.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/io/cameras.hpp"
 #include "vksplat/io/formats.hpp"
@@ -59,10 +60,6 @@ std::filesystem::path next_screenshot() {
         std::snprintf(name, sizeof(name), "vksplat_view_%03d.png", n);
         if (!std::filesystem::exists(name)) return name;
     }
-}
-
-void check(VkResult result, const char* what) {
-    if (result != VK_SUCCESS) throw GpuError(std::string(what) + " failed (VkResult " + std::to_string(result) + ")");
 }
 
 // The command buffer, fence and acquire semaphore of the one frame in flight.
