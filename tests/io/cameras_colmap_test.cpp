@@ -77,11 +77,6 @@ void write_text_model(const std::filesystem::path& folder) {
     write_bytes(folder / "images.txt", images.str());
 }
 
-template <typename T>
-void append(std::string& bytes, T value) {
-    bytes.append(reinterpret_cast<const char*>(&value), sizeof value);  // the test host is little-endian
-}
-
 // As COLMAP's WriteCamerasBinary and WriteImagesBinary lay the files out.
 void write_binary_model(const std::filesystem::path& folder) {
     std::filesystem::create_directories(folder);

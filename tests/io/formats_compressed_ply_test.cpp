@@ -15,15 +15,6 @@
 namespace vksplat::io::test {
 namespace {
 
-constexpr double kShC0 = 0.28209479177387814;
-
-template <typename T>
-void append(std::string& bytes, T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes.append(raw, sizeof(T));
-}
-
 const char* const kChunkNames[] = {"min_x",       "min_y",       "min_z",       "max_x",       "max_y",
                                    "max_z",       "min_scale_x", "min_scale_y", "min_scale_z", "max_scale_x",
                                    "max_scale_y", "max_scale_z", "min_r",       "min_g",       "min_b",

@@ -12,10 +12,6 @@
 namespace vksplat::io::test {
 namespace {
 
-constexpr double kShC0 = 0.28209479177387814;
-
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
-
 // The largest minus the smallest of `values` at `axis` of each `stride`.
 double extent(const std::vector<float>& values, size_t stride, size_t axis) {
     float low = INFINITY, high = -INFINITY;

@@ -18,8 +18,6 @@ namespace {
 namespace fs = std::filesystem;
 using Json = nlohmann::json;
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
-
 uint32_t u32_at(const std::string& bytes, size_t offset) {
     uint32_t value;
     std::memcpy(&value, bytes.data() + offset, 4);

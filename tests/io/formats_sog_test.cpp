@@ -19,8 +19,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
-
 // Values like a trained scene's, each attribute in its own range.
 GaussianCloud scene_like_cloud(size_t count, int sh_degree, unsigned seed = 3) {
     GaussianCloud cloud = random_cloud(count, sh_degree, seed);

@@ -11,17 +11,6 @@
 namespace vksplat::io::test {
 namespace {
 
-constexpr double kShC0 = 0.28209479177387814;
-
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
-
-template <typename T>
-void append(std::string& bytes, T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes.append(raw, sizeof(T));
-}
-
 std::string record(const float position[3], const float scale[3], const uint8_t rgba[4], const uint8_t rotation[4]) {
     std::string bytes;
     for (int a = 0; a < 3; ++a) append(bytes, position[a]);
@@ -32,7 +21,7 @@ std::string record(const float position[3], const float scale[3], const uint8_t 
 }
 
 // Values a .splat can hold without clamping: colours within [0, 1], any opacity and rotation.
-GaussianCloud representable_cloud(size_t count, int sh_degree, unsigned seed) {
+GaussianCloud splat_representable_cloud(size_t count, int sh_degree, unsigned seed) {
     GaussianCloud cloud = random_cloud(count, sh_degree, seed);
     std::mt19937 random(seed);
     std::uniform_real_distribution<float> dc(-1.7f, 1.7f);
@@ -79,7 +68,7 @@ TEST(FormatsSplat, HandMadeRecordsDecodeAsTheLayoutSays) {
 
 TEST(FormatsSplat, RoundTripWithinQuantisation) {
     ScratchDir dir;
-    const GaussianCloud original = representable_cloud(500, 2, 7);
+    const GaussianCloud original = splat_representable_cloud(500, 2, 7);
     write_splat(original, dir / "scene.splat");
     EXPECT_EQ(std::filesystem::file_size(dir / "scene.splat"), 500u * 32u);
     const GaussianCloud back = read_splat(dir / "scene.splat");
@@ -146,7 +135,7 @@ TEST(FormatsSplat, MissingFile) {
 
 TEST(FormatsSplat, WriterRefusesToReplaceAFileUnlessAsked) {
     ScratchDir dir;
-    const GaussianCloud cloud = representable_cloud(3, 0, 2);
+    const GaussianCloud cloud = splat_representable_cloud(3, 0, 2);
     write_splat(cloud, dir / "a.splat");
     expect_input_error([&] { write_splat(cloud, dir / "a.splat"); }, {"a.splat"});
     EXPECT_NO_THROW(write_splat(cloud, dir / "a.splat", WriteMode::overwrite));
@@ -154,7 +143,7 @@ TEST(FormatsSplat, WriterRefusesToReplaceAFileUnlessAsked) {
 
 TEST(FormatsSplat, WriterRefusesAnInconsistentCloud) {
     ScratchDir dir;
-    GaussianCloud cloud = representable_cloud(3, 0, 2);
+    GaussianCloud cloud = splat_representable_cloud(3, 0, 2);
     cloud.positions.pop_back();
     expect_input_error([&] { write_splat(cloud, dir / "bad.splat"); }, {"bad.splat", "inconsistent"});
     EXPECT_FALSE(std::filesystem::exists(dir / "bad.splat"));

@@ -16,15 +16,6 @@
 namespace vksplat::io::test {
 namespace {
 
-double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
-
-template <typename T>
-void append(std::string& bytes, T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes.append(raw, sizeof(T));
-}
-
 std::string spz_header(uint32_t version, uint32_t count, uint8_t sh_degree, uint8_t fractional_bits = 12,
                        uint8_t flags = 0, uint32_t magic = 0x5053474e) {
     std::string bytes;
@@ -258,7 +249,7 @@ TEST(FormatsSpzErrors, MalformedVersion4IsRefused) {
 
 // A cloud whose values SPZ can hold: DC within its colour range, log scales within [-10, 5.9],
 // SH within [-1, 1).
-GaussianCloud representable_cloud(size_t count, int sh_degree, unsigned seed) {
+GaussianCloud spz_representable_cloud(size_t count, int sh_degree, unsigned seed) {
     GaussianCloud cloud = random_cloud(count, sh_degree, seed);
     std::mt19937 random(seed);
     std::uniform_real_distribution<float> unit(-0.99f, 0.99f);
@@ -302,7 +293,7 @@ TEST(FormatsSpz, RoundTripWithinQuantisation) {
     ScratchDir dir;
     for (int version : {3, 4})
         for (int degree = 0; degree <= 3; ++degree) {
-            const GaussianCloud original = representable_cloud(300, degree, 11 + degree);
+            const GaussianCloud original = spz_representable_cloud(300, degree, 11 + degree);
             const auto path = dir / ("scene" + std::to_string(version) + std::to_string(degree) + ".spz");
             write_spz(original, path, WriteMode::refuse_existing, version);
             const std::string bytes = read_bytes(path);
@@ -322,7 +313,7 @@ TEST(FormatsSpz, RoundTripWithinQuantisation) {
 
 TEST(FormatsSpz, WriterWritesVersion3UnlessAskedFor4) {
     ScratchDir dir;
-    const GaussianCloud cloud = representable_cloud(5, 1, 3);
+    const GaussianCloud cloud = spz_representable_cloud(5, 1, 3);
     write_spz(cloud, dir / "default.spz");
     EXPECT_EQ(static_cast<uint8_t>(read_bytes(dir / "default.spz")[0]), 0x1f);
     write_scene(cloud, dir / "named.spz", WriteMode::refuse_existing, "spz-v4");
@@ -333,7 +324,7 @@ TEST(FormatsSpz, WriterWritesVersion3UnlessAskedFor4) {
 
 TEST(FormatsSpz, WriterUsesFewerFractionalBitsForLargeScenes) {
     ScratchDir dir;
-    GaussianCloud original = representable_cloud(20, 1, 5);
+    GaussianCloud original = spz_representable_cloud(20, 1, 5);
     original.positions[7] = 30000.0f;  // needs 15 integer bits: at most 8 fractional
     write_spz(original, dir / "large.spz", WriteMode::refuse_existing, 4);
     const std::string header = read_bytes(dir / "large.spz");  // version 4: the header is not compressed
@@ -344,7 +335,7 @@ TEST(FormatsSpz, WriterUsesFewerFractionalBitsForLargeScenes) {
 
 TEST(FormatsSpz, WriterRefusesWhatSpzCannotHold) {
     ScratchDir dir;
-    GaussianCloud cloud = representable_cloud(3, 0, 1);
+    GaussianCloud cloud = spz_representable_cloud(3, 0, 1);
     cloud.positions[4] = 1e7f;
     expect_input_error([&] { write_spz(cloud, dir / "huge.spz"); }, {"huge.spz", "24-bit fixed point"});
     cloud.positions[4] = std::nanf("");

@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -16,6 +18,19 @@
 #include "vksplat/scene/scene.hpp"
 
 namespace vksplat::io::test {
+
+// The SH degree-0 basis constant.
+constexpr double kShC0 = 0.28209479177387814;
+
+inline double sigmoid(double x) { return 1.0 / (1.0 + std::exp(-x)); }
+
+// Appends `value`'s bytes as they are in memory (the test host is little-endian, as the formats are).
+template <typename T>
+void append(std::string& bytes, T value) {
+    char raw[sizeof(T)];
+    std::memcpy(raw, &value, sizeof(T));
+    bytes.append(raw, sizeof(T));
+}
 
 // A fresh folder for one test, removed with everything in it afterwards.
 class ScratchDir {

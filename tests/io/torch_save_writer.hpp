@@ -8,15 +8,9 @@
 #include <vector>
 
 #include "io/formats_detail.hpp"
+#include "io/io_test_helpers.hpp"
 
 namespace vksplat::io::test {
-
-template <typename T>
-void append(std::string& bytes, T value) {
-    char raw[sizeof(T)];
-    std::memcpy(raw, &value, sizeof(T));
-    bytes.append(raw, sizeof(T));
-}
 
 // ---- a zip writer: stored or deflated entries, with padding in the local headers as PyTorch adds.
 struct ZipInput {
