@@ -36,7 +36,7 @@ bool parse_type(const std::string& word, ScalarType& type) {
 }
 
 // A header line as it may be quoted in a message: short, and without control bytes from a body.
-std::string quoted(const std::string& line) {
+std::string quoted_line(const std::string& line) {
     std::string shown;
     for (char c : line.substr(0, 60)) shown += (c >= 32 && c < 127) ? c : '?';
     return "'" + shown + (line.size() > 60 ? "...'" : "'");
@@ -118,7 +118,7 @@ Header read_header(std::istream& in, const std::string& where) {
         }
         if (keyword == "comment" || keyword == "obj_info") continue;
         if (keyword == "format") {
-            if (words.size() != 3) throw InputError(where, at + "malformed format line " + quoted(line));
+            if (words.size() != 3) throw InputError(where, at + "malformed format line " + quoted_line(line));
             if (words[1] == "ascii")
                 header.format = Format::ascii;
             else if (words[1] == "binary_little_endian")
@@ -129,7 +129,7 @@ Header read_header(std::istream& in, const std::string& where) {
                 throw InputError(where, at + "unsupported format '" + words[1] + "'");
             seen_format = true;
         } else if (keyword == "element") {
-            if (words.size() != 3) throw InputError(where, at + "malformed element line " + quoted(line));
+            if (words.size() != 3) throw InputError(where, at + "malformed element line " + quoted_line(line));
             Element element;
             element.name = words[1];
             const auto& count = words[2];
@@ -139,26 +139,26 @@ Header read_header(std::istream& in, const std::string& where) {
                                             "' is not a number that fits in 64 bits");
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
-            if (header.elements.empty()) throw InputError(where, at + "property before any element: " + quoted(line));
+            if (header.elements.empty()) throw InputError(where, at + "property before any element: " + quoted_line(line));
             Element& element = header.elements.back();
             Property property;
             const bool is_list = words.size() == 5 && words[1] == "list";
             if (!is_list && words.size() != 3)
                 throw InputError(where,
-                                 "element '" + element.name + "': " + at + "malformed property line " + quoted(line));
+                                 "element '" + element.name + "': " + at + "malformed property line " + quoted_line(line));
             property.is_list = is_list;
             property.name = words.back();
             const std::string& type = words[is_list ? 3 : 1];
             if (!parse_type(type, property.type) || (is_list && !parse_type(words[2], property.count_type)))
                 throw InputError(where, "element '" + element.name + "': property '" + property.name +
-                                            "' has an unknown type in " + quoted(line));
+                                            "' has an unknown type in " + quoted_line(line));
             for (const auto& existing : element.properties)
                 if (existing.name == property.name)
                     throw InputError(
                         where, "element '" + element.name + "': property '" + property.name + "' is declared twice");
             element.properties.push_back(std::move(property));
         } else {
-            throw InputError(where, at + "unrecognised header line " + quoted(line) + " (is end_header missing?)");
+            throw InputError(where, at + "unrecognised header line " + quoted_line(line) + " (is end_header missing?)");
         }
     }
 }

@@ -114,7 +114,7 @@ struct SortCase {
     Pattern pattern;
 };
 
-std::string case_name(const testing::TestParamInfo<SortCase>& info) {
+std::string sort_case_name(const testing::TestParamInfo<SortCase>& info) {
     return "n" + std::to_string(info.param.count) + "_bits" + std::to_string(info.param.bits) + "_" +
            pattern_name(info.param.pattern);
 }
@@ -171,7 +171,7 @@ std::vector<SortCase> sort_cases() {
     return cases;
 }
 
-INSTANTIATE_TEST_SUITE_P(Cases, RadixSortTest, testing::ValuesIn(sort_cases()), case_name);
+INSTANTIATE_TEST_SUITE_P(Cases, RadixSortTest, testing::ValuesIn(sort_cases()), sort_case_name);
 
 // A scatter block that finds a predecessor's digit counts unpublished counts that block's keys
 // itself. With no spinning that happens whenever blocks run at once (lavapipe's threads do: a
