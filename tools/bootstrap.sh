@@ -51,7 +51,11 @@ if [ "$mode" = test ] && ! grep -qs "\"version\": \"$gltf_validator_version\"" \
     "gltf-validator@$gltf_validator_version"
 fi
 
-cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release >/dev/null
+# A unity build (CMake joins a target's sources, a few at a time, into one file): the set-up builds
+# everything from nothing, and most of a file's compile time goes to headers every file includes
+# (Vulkan, GLM, OpenCV, nlohmann/json, CLI11, GoogleTest). On 2 cores: about 12 min -> 397 s. Developers
+# own builds may leave it off, so that a change recompiles one file.
+cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=Release -DCMAKE_UNITY_BUILD=ON >/dev/null
 cmake --build "$build" -j"$(nproc)"
 
 case "$mode" in
