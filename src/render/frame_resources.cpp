@@ -56,7 +56,7 @@ void FrameResources::release() {
         *buffer = gpu::Buffer();
     scan_scratch.reset();
     sort_scratch.reset();
-    gaussian_capacity = entry_capacity = pixel_capacity = tile_capacity = 0;
+    gaussian_capacity = entry_capacity = pixel_capacity = tile_capacity = readback_capacity = 0;
 }
 
 void FrameResources::ensure_entries(uint32_t count) {
@@ -77,13 +77,19 @@ void FrameResources::ensure_image(uint32_t pixels, uint32_t tiles) {
         replace(color_alpha, c, uint64_t(pixels) * 16, "colour and alpha image");
         replace(depth, c, uint64_t(pixels) * 4, "depth image");
         replace(contributors, c, uint64_t(pixels) * 4, "contributor counts");
-        gpu::replace(readback, c, readback_bytes(pixels), gpu::MemoryKind::readback, "image readback");
         pixel_capacity = pixels;
     }
     if (tiles > tile_capacity) {
         replace(ranges, *context, uint64_t(tiles) * 8, "tile ranges");
         tile_capacity = tiles;
     }
+}
+
+void FrameResources::ensure_readback(uint32_t pixels) {
+    pixels = std::max(pixels, 1u);
+    if (pixels <= readback_capacity) return;
+    gpu::replace(readback, *context, readback_bytes(pixels), gpu::MemoryKind::readback, "image readback");
+    readback_capacity = pixels;
 }
 
 void FrameResources::ensure_stats(uint32_t count) {

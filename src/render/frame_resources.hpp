@@ -39,7 +39,11 @@ struct FrameResources {
     // Per pixel and per tile.
     uint32_t pixel_capacity = 0, tile_capacity = 0;
     gpu::Buffer color_alpha, depth, contributors, ranges;
-    gpu::Buffer readback;  // host-visible: color_alpha, depth, contributors, then the counters
+    // Host-visible: color_alpha, depth, contributors, then the counters. Apart from the image's
+    // device buffers: the trainer never reads a frame back, and pinned host memory is slow to
+    // allocate and free at each of its densification events.
+    uint32_t readback_capacity = 0;
+    gpu::Buffer readback;
 
     // Per-pixel state carried from one depth-ordered chunk to the next (frames larger than the
     // memory budget; allocated on the first such frame): colour and transmittance 16, depth sum
@@ -57,6 +61,7 @@ struct FrameResources {
     void ensure_gaussians(uint32_t count);
     void ensure_entries(uint32_t count);
     void ensure_image(uint32_t pixels, uint32_t tiles);
+    void ensure_readback(uint32_t pixels);
     void ensure_stats(uint32_t count);
     void ensure_packed(uint32_t pixels);
     void ensure_carry(uint32_t pixels);

@@ -315,6 +315,7 @@ bool Renderer::Impl::run_whole(const Camera& camera, const RenderSettings& setti
     const auto [pixels, tiles] = render::image_extent(camera);
     frame.ensure_gaussians(scene.count);
     frame.ensure_image(pixels, tiles);
+    frame.ensure_readback(pixels);
     if (frame.entry_capacity == 0) frame.ensure_entries(std::max(scene.count, 1u) * render::kInitialEntriesPerGaussian);
     if (settings.gather_stats) {
         stats_kernel();
@@ -404,6 +405,7 @@ void Renderer::Impl::run_chunked(const Camera& camera, const RenderSettings& set
     frame.ensure_gaussians(chunk_size);
     frame.ensure_entries(entries_for(chunk_size));
     frame.ensure_image(pixels, tiles);
+    frame.ensure_readback(pixels);
     frame.ensure_carry(pixels);
     if (with_stats) {
         frame.ensure_stats(chunk_size);
