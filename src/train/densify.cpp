@@ -175,7 +175,7 @@ DensifyInputs DensifyPasses::download_inputs(const TrainableScene& scene) {
     d.stream.barrier_before_host_read();
     d.stream.submit_and_wait();
     const auto* values = static_cast<const float*>(d.readback.mapped());
-    return {n, std::vector<float>(values, values + geometry), std::vector<float>(values + geometry, values + geometry + sums)};
+    return {n, {values, geometry}, {values + geometry, sums}};
 }
 
 void DensifyPasses::apply(TrainableScene& scene, const DensifyPlan& plan) {

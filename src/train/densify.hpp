@@ -9,6 +9,7 @@
 // (shaders/train/densify_gather.comp, reset_opacity.comp; layouts in shaders/train/densify.h).
 #include <cstdint>
 #include <memory>
+#include <span>
 #include <vector>
 
 #include <glm/vec3.hpp>
@@ -21,11 +22,13 @@ namespace vksplat::train {
 
 // What plan_densify reads of N Gaussians: the first 11 N floats of the parameter layout
 // (positions, log-scales, quaternions, opacity logits) and kDensifyStride sums per Gaussian
-// (preprocess_backward's gradient-norm sum, views, largest radius).
+// (preprocess_backward's gradient-norm sum, views, largest radius). Views, not copies: from
+// DensifyPasses::download_inputs they lie in its readback buffer (valid until its next call),
+// since copying 22 MB out at each of a 400k run's events took most of the read-back time.
 struct DensifyInputs {
     uint32_t count = 0;
-    std::vector<float> geometry;
-    std::vector<float> sums;
+    std::span<const float> geometry;
+    std::span<const float> sums;
 };
 
 // The new scene: Gaussian j copies old Gaussian sources[j]. Survivors come first in their order,
@@ -51,7 +54,7 @@ public:
     DensifyPasses(const DensifyPasses&) = delete;
     DensifyPasses& operator=(const DensifyPasses&) = delete;
 
-    // What plan_densify needs of `scene`, read back.
+    // What plan_densify needs of `scene`, read back; valid until the next call.
     DensifyInputs download_inputs(const TrainableScene& scene);
     // Lays `scene` out anew by the plan, from its parameters and moments; its densification sums
     // start at zero, and gradients, if it kept any, are gone. Waits for the device. Holds at most

@@ -8,6 +8,7 @@
 // The trainer's internals first: they include volk, which must come before the public headers'
 // Vulkan declarations.
 #include "train/densify.hpp"
+#include "train/host_densify_inputs.hpp"
 #include "train/parameter_layout.hpp"
 
 #include "support/gpu_fixture.hpp"
@@ -16,15 +17,14 @@
 namespace vksplat::test {
 namespace {
 
-using train::DensifyInputs;
 using train::DensifyRules;
 
 // Gaussian i: at (i, 0, 0), isotropic scale scales[i], opacity 0.5, identity rotation, drawn in
 // 4 views with mean NDC gradient grads[i] and radius 5 pixels.
-DensifyInputs inputs_of(const std::vector<float>& scales, const std::vector<float>& grads) {
+HostDensifyInputs inputs_of(const std::vector<float>& scales, const std::vector<float>& grads) {
     const uint32_t n = uint32_t(scales.size());
     const train::ParameterLayout layout{n, 1};
-    DensifyInputs in{n, std::vector<float>(11 * n, 0.0f), std::vector<float>(train::kDensifyStride * n, 0.0f)};
+    HostDensifyInputs in(n);
     for (uint32_t i = 0; i < n; ++i) {
         in.geometry[layout.positions() + 3 * i] = float(i);
         for (int k = 0; k < 3; ++k) in.geometry[layout.log_scales() + 3 * i + k] = std::log(scales[i]);
@@ -61,7 +61,7 @@ TEST(Densify, SplitSamplesFollowTheParentsAnisotropicShape) {
     // each world axis must be the parent's standard deviation there.
     const float sx = 2.0f, sy = 0.2f, sz = 0.02f;
     const float half = float(M_SQRT1_2);  // 90 degrees about z: the long axis becomes world y
-    DensifyInputs in = inputs_of({1.0f}, {1.0f});
+    HostDensifyInputs in = inputs_of({1.0f}, {1.0f});
     in.geometry[0] = 0.0f;
     const float log_scales[3] = {std::log(sx), std::log(sy), std::log(sz)};
     for (int k = 0; k < 3; ++k) in.geometry[3 + k] = log_scales[k];
@@ -89,7 +89,7 @@ TEST(Densify, SplitSamplesFollowTheParentsAnisotropicShape) {
 }
 
 TEST(Densify, PrunesTransparentAlwaysAndLargeOnlyWhenAsked) {
-    DensifyInputs in = inputs_of({0.05f, 0.05f, 0.05f, 5.0f}, {0, 0, 0, 0});
+    HostDensifyInputs in = inputs_of({0.05f, 0.05f, 0.05f, 5.0f}, {0, 0, 0, 0});
     in.geometry[10 * 4 + 1] = -6.0f;                   // opacity 0.0025 < 0.005
     in.sums[2 * train::kDensifyStride + 2] = 30.0f;    // 30 px on screen
     DensifyRules rules;
@@ -116,7 +116,7 @@ TEST(Densify, TheCapKeepsTheLargestGradients) {
 
 // Summed over views, a smaller mean gradient that four more views share outranks a larger one.
 TEST(Densify, TheGradientSumRanksByEveryViewThatAsks) {
-    DensifyInputs in = inputs_of({0.05f, 0.05f}, {0.004f, 0.003f});
+    HostDensifyInputs in = inputs_of({0.05f, 0.05f}, {0.004f, 0.003f});
     in.sums[1 * train::kDensifyStride] = 0.003f * 8.0f;
     in.sums[1 * train::kDensifyStride + 1] = 8.0f;
     DensifyRules rules;
@@ -127,7 +127,7 @@ TEST(Densify, TheGradientSumRanksByEveryViewThatAsks) {
 }
 
 TEST(Densify, NotDrawnMeansNoGradient) {
-    DensifyInputs in = inputs_of({0.05f}, {1.0f});
+    HostDensifyInputs in = inputs_of({0.05f}, {1.0f});
     in.sums[1] = 0.0f;  // no view drew it, whatever the sum says
     EXPECT_EQ(train::plan_densify(in, DensifyRules{}, 10.0, 1).report.after, 1u);
     // Nor is it a candidate when every gradient qualifies.

@@ -7,6 +7,7 @@
 #include <map>
 #include <vector>
 
+#include "train/host_densify_inputs.hpp"
 #include "train/parameter_layout.hpp"
 #include "train/photographed_views.hpp"
 #include "train/relocation.hpp"
@@ -15,7 +16,6 @@
 namespace vksplat::test {
 namespace {
 
-using train::DensifyInputs;
 
 // The composite of n copies at one place, integrated along an axis by the trapezoid rule:
 // integral of 1 - (1 - o' exp(-x^2 / (2 s^2)))^n dx.
@@ -45,10 +45,10 @@ TEST(RelocatedCopy, CopiesRenderAsTheOriginalDid) {
 }
 
 // Gaussian i at (i, 0, 0), log-scale -1, identity rotation, opacity opacities[i].
-DensifyInputs inputs_with(const std::vector<double>& opacities) {
+HostDensifyInputs inputs_with(const std::vector<double>& opacities) {
     const uint32_t n = uint32_t(opacities.size());
     const train::ParameterLayout layout{n, 1};
-    DensifyInputs in{n, std::vector<float>(11 * n, 0.0f), std::vector<float>(train::kDensifyStride * n, 0.0f)};
+    HostDensifyInputs in(n);
     for (uint32_t i = 0; i < n; ++i) {
         in.geometry[layout.positions() + 3 * i] = float(i);
         for (int k = 0; k < 3; ++k) in.geometry[layout.log_scales() + 3 * i + k] = -1.0f;
@@ -62,7 +62,7 @@ double sigmoid(double x) { return 1 / (1 + std::exp(-x)); }
 
 TEST(PlanRelocation, MovesTheTransparentAndGrowsKeepingEachPlaceAsItWas) {
     const std::vector<double> opacities = {0.5, 0.001, 0.3, 0.8, 0.004, 0.6};
-    const DensifyInputs in = inputs_with(opacities);
+    const HostDensifyInputs in = inputs_with(opacities);
     const auto [plan, report] = train::plan_relocation(in, {.min_opacity = 0.005, .target = 9}, 7);
     EXPECT_EQ(report.before, 6u);
     EXPECT_EQ(report.relocated, 2u);
