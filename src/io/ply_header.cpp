@@ -139,13 +139,15 @@ Header read_header(std::istream& in, const std::string& where) {
                                             "' is not a number that fits in 64 bits");
             header.elements.push_back(std::move(element));
         } else if (keyword == "property") {
-            if (header.elements.empty()) throw InputError(where, at + "property before any element: " + quoted_line(line));
+            if (header.elements.empty())
+                throw InputError(where, at + "property before any element: " + quoted_line(line));
             Element& element = header.elements.back();
             Property property;
             const bool is_list = words.size() == 5 && words[1] == "list";
             if (!is_list && words.size() != 3)
                 throw InputError(where,
-                                 "element '" + element.name + "': " + at + "malformed property line " + quoted_line(line));
+                                 "element '" + element.name + "': " + at + "malformed property line " +
+                                     quoted_line(line));
             property.is_list = is_list;
             property.name = words.back();
             const std::string& type = words[is_list ? 3 : 1];

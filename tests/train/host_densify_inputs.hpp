@@ -13,7 +13,8 @@ struct HostDensifyInputs {
     uint32_t count = 0;
     std::vector<float> geometry, sums;
 
-    explicit HostDensifyInputs(uint32_t n) : count(n), geometry(11 * size_t(n), 0.0f), sums(train::kDensifyStride * size_t(n), 0.0f) {}
+    explicit HostDensifyInputs(uint32_t n)
+        : count(n), geometry(11 * size_t(n), 0.0f), sums(train::kDensifyStride * size_t(n), 0.0f) {}
     operator train::DensifyInputs() const { return {count, geometry, sums}; }
 };
 
