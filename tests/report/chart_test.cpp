@@ -19,10 +19,12 @@
 #include <unistd.h>
 
 #include "vksplat/error.hpp"
-#include "report/report_test_helpers.hpp"
+#include "support/text_files.hpp"
 
 namespace vksplat::report {
 namespace {
+
+using test::count;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();

@@ -23,19 +23,15 @@
 #include "vksplat/report/chart.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
 #include "vksplat/io/image.hpp"
-#include "report/report_test_helpers.hpp"
+#include "support/text_files.hpp"
 
 namespace vksplat::report {
 namespace {
 
 namespace fs = std::filesystem;
 
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
+using test::count;
+using test::read_text;
 
 fs::path fresh_dir(const std::string& name) {
     const fs::path dir = fs::temp_directory_path() / ("vksplat_" + name + "_" + std::to_string(::getpid()));

@@ -20,6 +20,7 @@
 #include "support/photos.hpp"
 #include "support/scenes.hpp"
 #include "support/scratch_dir.hpp"
+#include "support/text_files.hpp"
 #include "vksplat/error.hpp"
 #include "vksplat/report/chart.hpp"
 #include "vksplat/report/comparison_sheet.hpp"
@@ -32,19 +33,6 @@ namespace vksplat::test {
 namespace {
 
 namespace fs = std::filesystem;
-
-std::string read_text(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::stringstream s;
-    s << in.rdbuf();
-    return s.str();
-}
-
-size_t count(const std::string& haystack, const std::string& needle) {
-    size_t n = 0;
-    for (size_t at = haystack.find(needle); at != std::string::npos; at = haystack.find(needle, at + 1)) ++n;
-    return n;
-}
 
 std::vector<std::vector<std::string>> read_csv(const fs::path& path) {
     std::vector<std::vector<std::string>> rows;
